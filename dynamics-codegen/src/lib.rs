@@ -1,0 +1,1 @@
+//! The compiler of the dynamics toolkit (see DESIGN.md for its stages).

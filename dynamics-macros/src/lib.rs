@@ -1,0 +1,1 @@
+//! The `mechanism!` macro (a thin shell over `dynamics_codegen`).

@@ -1,0 +1,15 @@
+//! Runtime of the dynamics toolkit.
+//!
+//! What generated code and users link against: the [`Scalar`] trait, the validated runtime
+//! [`Model`], and the reference algorithms that check the generated code. The reference is
+//! written from the textbook, independently of the symbolic expansion, so that the two
+//! catch each other's mistakes.
+
+pub mod model;
+pub mod scalar;
+
+pub use model::{
+    BodySpec, Inertia, JointKind, JointSpec, JointType, Model, ModelBuilder, ModelError,
+    ModelErrors, Placement, SizeError, GROUND,
+};
+pub use scalar::Scalar;

@@ -1,0 +1,179 @@
+//! The validation rules of a declared mechanism, one function per rule.
+//!
+//! Each rule pushes its findings onto a list, so a model reports all of its errors at once.
+//! Tolerances are relative to the magnitude of the numbers involved, so rounding in data
+//! typed by hand or converted from URDF passes while real mistakes do not.
+
+use super::builder::JointType;
+use super::builder::{BodySpec, JointSpec};
+use super::error::ModelError;
+use super::matrix_from_rows;
+use nalgebra::{Matrix3, SymmetricEigen};
+
+/// Relative tolerance of the inertia rules (symmetry, semi-definiteness, triangle).
+const INERTIA_TOLERANCE: f64 = 1e-9;
+/// Absolute tolerance of |RᵀR − 1| for placement rotations.
+const ROTATION_TOLERANCE: f64 = 1e-6;
+
+/// Rule: every number of a body (mass, mass centre, inertia) is finite.
+pub(crate) fn body_numbers_are_finite(body: &BodySpec, errors: &mut Vec<ModelError>) {
+    let item = || format!("body `{}`", body.name);
+    let i = &body.inertia;
+    if !i.mass.is_finite() {
+        errors.push(ModelError::NonFinite {
+            item: item(),
+            field: "mass",
+            value: i.mass,
+        });
+    }
+    if let Some(v) = i.com_in_body.iter().find(|v| !v.is_finite()) {
+        errors.push(ModelError::NonFinite {
+            item: item(),
+            field: "mass centre",
+            value: *v,
+        });
+    }
+    if let Some(v) = i.inertia_com_in_body.iter().find(|v| !v.is_finite()) {
+        errors.push(ModelError::NonFinite {
+            item: item(),
+            field: "inertia",
+            value: *v,
+        });
+    }
+}
+
+/// Rule: a body's mass is not negative (zero is allowed: a frame, or a massless link that
+/// carries other bodies).
+pub(crate) fn mass_is_not_negative(body: &BodySpec, errors: &mut Vec<ModelError>) {
+    if body.inertia.mass < 0.0 {
+        errors.push(ModelError::NegativeMass {
+            body: body.name.clone(),
+            mass: body.inertia.mass,
+        });
+    }
+}
+
+/// Rule: I_G is symmetric, I[i][j] = I[j][i] to a relative tolerance.
+pub(crate) fn inertia_is_symmetric(body: &BodySpec, errors: &mut Vec<ModelError>) {
+    let m = &body.inertia.inertia_com_in_body;
+    let scale = m.amax().max(f64::MIN_POSITIVE);
+    for (row, col) in [(0, 1), (0, 2), (1, 2)] {
+        let (upper, lower) = (m[(row, col)], m[(col, row)]);
+        if (upper - lower).abs() > INERTIA_TOLERANCE * scale {
+            errors.push(ModelError::InertiaNotSymmetric {
+                body: body.name.clone(),
+                row,
+                col,
+                upper,
+                lower,
+            });
+            return;
+        }
+    }
+}
+
+/// Principal moments of a symmetric inertia, ascending.
+pub(crate) fn principal_moments(inertia: &Matrix3<f64>) -> [f64; 3] {
+    let symmetric = (inertia + inertia.transpose()) * 0.5;
+    let mut p: [f64; 3] = SymmetricEigen::new(symmetric).eigenvalues.into();
+    p.sort_by(f64::total_cmp);
+    p
+}
+
+/// Rule: I_G is positive semi-definite: every principal moment is ≥ 0. (Zero moments are
+/// allowed: a thin rod about its own axis, a point mass.)
+pub(crate) fn inertia_is_positive(body: &BodySpec, errors: &mut Vec<ModelError>) {
+    let m = &body.inertia.inertia_com_in_body;
+    if !m.iter().all(|v| v.is_finite()) {
+        return;
+    }
+    let p = principal_moments(m);
+    if p[0] < -INERTIA_TOLERANCE * p[2].abs().max(f64::MIN_POSITIVE) {
+        errors.push(ModelError::InertiaNotPositive {
+            body: body.name.clone(),
+            principal_moments: p,
+        });
+    }
+}
+
+/// Rule: the principal moments satisfy the triangle inequality I1 + I2 ≥ I3, which every
+/// real mass distribution does (I1 + I2 − I3 = 2∫ z² dm ≥ 0 in principal axes).
+pub(crate) fn inertia_satisfies_triangle(body: &BodySpec, errors: &mut Vec<ModelError>) {
+    let m = &body.inertia.inertia_com_in_body;
+    if !m.iter().all(|v| v.is_finite()) {
+        return;
+    }
+    let p = principal_moments(m);
+    if p[0] >= 0.0 && p[0] + p[1] < p[2] - INERTIA_TOLERANCE * (p[0] + p[1] + p[2]) {
+        errors.push(ModelError::TriangleInequality {
+            body: body.name.clone(),
+            principal_moments: p,
+        });
+    }
+}
+
+/// Rule: every number of a joint (axis, placement, armature, damping) is finite.
+pub(crate) fn joint_numbers_are_finite(joint: &JointSpec, errors: &mut Vec<ModelError>) {
+    let item = || format!("joint `{}`", joint.name);
+    let checks: [(&'static str, &[f64]); 5] = [
+        ("axis", &joint.axis),
+        ("translation", &joint.translation),
+        ("rotation", joint.rotation_rows.as_flattened()),
+        ("armature", std::slice::from_ref(&joint.armature)),
+        ("damping", std::slice::from_ref(&joint.damping)),
+    ];
+    for (field, values) in checks {
+        if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+            errors.push(ModelError::NonFinite {
+                item: item(),
+                field,
+                value: *v,
+            });
+        }
+    }
+}
+
+/// Rule: a revolute or prismatic axis has nonzero length (it is normalized afterwards).
+pub(crate) fn axis_is_nonzero(joint: &JointSpec, errors: &mut Vec<ModelError>) {
+    let moving = matches!(joint.kind, JointType::Revolute | JointType::Prismatic);
+    let norm = joint.axis.iter().map(|a| a * a).sum::<f64>().sqrt();
+    if moving && norm.is_finite() && norm < 1e-12 {
+        errors.push(ModelError::ZeroAxis {
+            joint: joint.name.clone(),
+            axis: joint.axis,
+        });
+    }
+}
+
+/// Rule: a placement rotation is a proper rotation: RᵀR = 1 and det R = +1.
+pub(crate) fn rotation_is_proper(joint: &JointSpec, errors: &mut Vec<ModelError>) {
+    let r = matrix_from_rows(joint.rotation_rows);
+    if !r.iter().all(|v| v.is_finite()) {
+        return;
+    }
+    let deviation = (r.transpose() * r - Matrix3::identity()).amax();
+    if deviation > ROTATION_TOLERANCE {
+        errors.push(ModelError::RotationNotOrthonormal {
+            joint: joint.name.clone(),
+            deviation,
+        });
+    } else if r.determinant() < 0.0 {
+        errors.push(ModelError::RotationImproper {
+            joint: joint.name.clone(),
+            determinant: r.determinant(),
+        });
+    }
+}
+
+/// Rule: armature (rotor inertia) and viscous damping are not negative.
+pub(crate) fn joint_coefficients_are_not_negative(joint: &JointSpec, errors: &mut Vec<ModelError>) {
+    for (field, value) in [("armature", joint.armature), ("damping", joint.damping)] {
+        if value < 0.0 {
+            errors.push(ModelError::NegativeJointCoefficient {
+                joint: joint.name.clone(),
+                field,
+                value,
+            });
+        }
+    }
+}

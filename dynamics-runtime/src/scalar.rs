@@ -1,0 +1,92 @@
+//! The number type that the reference algorithms and the generated code compute with.
+//!
+//! Contract: a `Scalar` is a copyable field element with `sin`, `cos` and `sqrt`, plus an
+//! exact-or-nearest conversion from `f64` for the model's constants. It deliberately has no
+//! comparison and no branching operation, so that SIMD lanes (four states at once), dual
+//! numbers (derivatives) and double-double (about 32 digits) can implement it later: the
+//! dynamics never branch on data.
+
+use nalgebra::{ClosedAddAssign, ClosedDivAssign, ClosedMulAssign, ClosedSubAssign};
+use num_traits::{One, Zero};
+use std::ops::Neg;
+
+/// Arithmetic needed by the dynamics, generic over the number representation.
+///
+/// Implemented for `f32` and `f64`. The nalgebra bounds let the reference algorithms use
+/// `Vector3<T>`, `Matrix3<T>` and `Matrix6<T>` arithmetic without any further trait.
+pub trait Scalar:
+    nalgebra::Scalar
+    + Copy
+    + Zero
+    + One
+    + ClosedAddAssign
+    + ClosedSubAssign
+    + ClosedMulAssign
+    + ClosedDivAssign
+    + Neg<Output = Self>
+    + Send
+    + Sync
+{
+    /// The value nearest to `x` (exact for `f64`, rounded to nearest for `f32`).
+    fn from_f64(x: f64) -> Self;
+    /// Sine of an angle in radians.
+    fn sin(self) -> Self;
+    /// Cosine of an angle in radians.
+    fn cos(self) -> Self;
+    /// Square root (NaN for negative input, as IEEE floats do).
+    fn sqrt(self) -> Self;
+    /// Sine and cosine together; implementations may share work.
+    #[inline]
+    fn sin_cos(self) -> (Self, Self) {
+        (self.sin(), self.cos())
+    }
+}
+
+macro_rules! impl_float_scalar {
+    ($t:ty) => {
+        impl Scalar for $t {
+            #[inline(always)]
+            fn from_f64(x: f64) -> Self {
+                x as $t
+            }
+            #[inline(always)]
+            fn sin(self) -> Self {
+                <$t>::sin(self)
+            }
+            #[inline(always)]
+            fn cos(self) -> Self {
+                <$t>::cos(self)
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                <$t>::sqrt(self)
+            }
+            #[inline(always)]
+            fn sin_cos(self) -> (Self, Self) {
+                <$t>::sin_cos(self)
+            }
+        }
+    };
+}
+
+impl_float_scalar!(f32);
+impl_float_scalar!(f64);
+
+#[cfg(test)]
+mod tests {
+    use super::Scalar;
+
+    #[test]
+    fn f32_rounds_to_nearest() {
+        assert_eq!(<f32 as Scalar>::from_f64(0.1), 0.1_f32);
+        assert_eq!(<f64 as Scalar>::from_f64(0.1), 0.1_f64);
+    }
+
+    #[test]
+    fn trig_matches_std() {
+        let (s, c) = Scalar::sin_cos(0.5_f64);
+        assert_eq!(s, 0.5_f64.sin());
+        assert_eq!(c, 0.5_f64.cos());
+        assert!(Scalar::sqrt(-1.0_f64).is_nan());
+    }
+}

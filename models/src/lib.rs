@@ -1,0 +1,1 @@
+//! Mechanisms declared with the toolkit.
