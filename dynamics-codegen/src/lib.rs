@@ -1,1 +1,3 @@
 //! The compiler of the dynamics toolkit (see DESIGN.md for its stages).
+
+pub mod sym;

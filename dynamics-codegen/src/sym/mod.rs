@@ -1,0 +1,278 @@
+//! The expression DAG that the symbolic expansion writes into and the emitter reads from.
+//!
+//! A [`Graph`] is a list of [`Op`]s in topological order: every operand of a node was
+//! created before it, so a node's id is larger than its children's ids, and walking the
+//! list front to back evaluates it. Nodes are named by a typed id, [`Node`], displayed as
+//! `v12`, which is also the variable name in the generated code.
+//!
+//! Building is where the optimisation happens (see the rules in [`Graph::add`] and its
+//! siblings, module `rules`):
+//!
+//! - **Hash-consing**: every node is looked up before it is created, so building the same
+//!   expression twice yields the same [`Node`]; common subexpressions exist once. In
+//!   particular `sin q_i` and `cos q_i` are atoms computed once, however often the
+//!   expansion asks for them.
+//! - **Constant folding**: an operation on constants is a constant (including `sin`, `cos`
+//!   and `sqrt`), computed in `f64`.
+//! - **Identities**: x·0 = 0, x·1 = x, x+0 = x, x−0 = x, 0−x = −x, x−x = 0, x/1 = x,
+//!   −(−x) = x, and a fixed set of negation rules that move signs outwards so that `0.5·x`
+//!   and `−0.5·x` share their product.
+//! - **Canonical order**: the operands of `+` and `·` are ordered by id, so `a+b` and
+//!   `b+a` are one node.
+//!
+//! What the graph does not do: reassociate (`(x·2)·3` stays two products), distribute, or
+//! anything else that would change the rounding of the textbook's evaluation order. The only
+//! rules that are not bit-exact in IEEE arithmetic are documented where they live: x·0 = 0
+//! and x−x = 0 (differ when x is infinite or NaN), x+0 = x and 0−x = −x and −(a−b) = b−a
+//! (may differ in the sign of a zero result).
+//!
+//! After building, [`Graph::live`] finds what the requested outputs need (everything else
+//! is dead and never emitted), [`Graph::op_count`] counts their operations, and
+//! [`Graph::eval`] evaluates them in `f64` for tests. [`Vec3`] and [`Mat3`] are small
+//! helpers for writing the textbook's vector equations over nodes; zero entries fold away.
+//!
+//! The graph uses interior mutability (`&self` builders), so that nested calls such as
+//! `g.add(a, g.mul(b, c))` read like the formula.
+
+mod analysis;
+mod linalg;
+mod rules;
+
+pub use analysis::{LiveSet, OpCount};
+pub use linalg::{Mat3, Vec3};
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::fmt;
+
+/// The id of a node of a [`Graph`]; displayed as `v12`, the variable name in emitted code.
+///
+/// Ids are dense indices into the graph's node list, in creation order, so a node's
+/// operands always have smaller ids.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Node(u32);
+
+impl Node {
+    /// The position of this node in its graph's node list.
+    #[must_use]
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+impl fmt::Display for Node {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "v{}", self.0)
+    }
+}
+
+/// A named input array of a generated function.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Array {
+    /// Joint positions `q`.
+    Q,
+    /// Joint velocities `v` (q̇).
+    V,
+    /// Joint accelerations `a` (q̈).
+    A,
+    /// Joint forces/torques `tau`.
+    Tau,
+    /// Symbolic model parameters `p` (masses, lengths, ... left as inputs).
+    P,
+}
+
+impl Array {
+    /// The Rust name of the array, used as the argument name in emitted code.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Array::Q => "q",
+            Array::V => "v",
+            Array::A => "a",
+            Array::Tau => "tau",
+            Array::P => "p",
+        }
+    }
+}
+
+/// One element of an input array, e.g. `q[3]`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct InputRef {
+    /// Which array.
+    pub array: Array,
+    /// The element's index in the array.
+    pub index: u32,
+}
+
+impl fmt::Display for InputRef {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}[{}]", self.array.name(), self.index)
+    }
+}
+
+/// An `f64` constant compared and hashed by its bit pattern.
+///
+/// `-0.0` is stored as `0.0` and every NaN as the canonical `f64::NAN`, so that equal
+/// values are one node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Const(u64);
+
+impl Const {
+    /// The constant `x`, normalised (`-0.0` → `0.0`, any NaN → `f64::NAN`).
+    #[must_use]
+    pub fn new(x: f64) -> Self {
+        let x = if x.is_nan() {
+            f64::NAN
+        } else if x == 0.0 {
+            0.0
+        } else {
+            x
+        };
+        Const(x.to_bits())
+    }
+
+    /// The value.
+    #[must_use]
+    pub fn value(self) -> f64 {
+        f64::from_bits(self.0)
+    }
+}
+
+/// What a node computes. Operands are nodes created earlier.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Op {
+    /// A numeric constant.
+    Const(Const),
+    /// An element of an input array.
+    Input(InputRef),
+    /// `a + b`, operands ordered by id.
+    Add(Node, Node),
+    /// `a − b`.
+    Sub(Node, Node),
+    /// `a · b`, operands ordered by id.
+    Mul(Node, Node),
+    /// `a / b`.
+    Div(Node, Node),
+    /// `−a`.
+    Neg(Node),
+    /// `sin a`.
+    Sin(Node),
+    /// `cos a`.
+    Cos(Node),
+    /// `√a`.
+    Sqrt(Node),
+}
+
+impl Op {
+    /// The operands, in order.
+    pub fn children(self) -> impl Iterator<Item = Node> {
+        let (a, b) = match self {
+            Op::Const(_) | Op::Input(_) => (None, None),
+            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => (Some(a), Some(b)),
+            Op::Neg(a) | Op::Sin(a) | Op::Cos(a) | Op::Sqrt(a) => (Some(a), None),
+        };
+        a.into_iter().chain(b)
+    }
+
+    /// Whether this is a leaf (a constant or an input): leaves cost nothing to recompute.
+    #[must_use]
+    pub fn is_leaf(self) -> bool {
+        matches!(self, Op::Const(_) | Op::Input(_))
+    }
+}
+
+/// Formats the operation with its operands' names, e.g. `v3 * v7` or `q[2]`.
+impl fmt::Display for Op {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Op::Const(c) => write!(f, "{:?}", c.value()),
+            Op::Input(r) => write!(f, "{r}"),
+            Op::Add(a, b) => write!(f, "{a} + {b}"),
+            Op::Sub(a, b) => write!(f, "{a} - {b}"),
+            Op::Mul(a, b) => write!(f, "{a} * {b}"),
+            Op::Div(a, b) => write!(f, "{a} / {b}"),
+            Op::Neg(a) => write!(f, "-{a}"),
+            Op::Sin(a) => write!(f, "sin({a})"),
+            Op::Cos(a) => write!(f, "cos({a})"),
+            Op::Sqrt(a) => write!(f, "sqrt({a})"),
+        }
+    }
+}
+
+/// The hash-consed expression DAG; see the [module documentation](self).
+///
+/// Builders take `&self` (the node list sits in a [`RefCell`]), so expressions nest.
+#[derive(Debug, Default)]
+pub struct Graph {
+    inner: RefCell<Nodes>,
+}
+
+/// The node list and the hash-consing index.
+#[derive(Debug, Default)]
+struct Nodes {
+    ops: Vec<Op>,
+    index: HashMap<Op, Node>,
+}
+
+impl Graph {
+    /// An empty graph.
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The number of nodes (live or not).
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.inner.borrow().ops.len()
+    }
+
+    /// Whether the graph has no nodes.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// What `node` computes.
+    ///
+    /// # Panics
+    /// If `node` belongs to another, larger graph.
+    #[must_use]
+    pub fn op(&self, node: Node) -> Op {
+        self.inner.borrow().ops[node.index()]
+    }
+
+    /// All nodes' operations in topological order (a snapshot).
+    #[must_use]
+    pub fn ops(&self) -> Vec<Op> {
+        self.inner.borrow().ops.clone()
+    }
+
+    /// The value of `node` if it is a constant.
+    #[must_use]
+    pub fn constant_value(&self, node: Node) -> Option<f64> {
+        match self.op(node) {
+            Op::Const(c) => Some(c.value()),
+            _ => None,
+        }
+    }
+
+    /// The node computing `op`: the existing one if there is one (hash-consing), else a new
+    /// node at the end of the list. No rule is applied here; the public builders apply the
+    /// rules and then call this with an operation in canonical form.
+    fn intern(&self, op: Op) -> Node {
+        let mut nodes = self.inner.borrow_mut();
+        if let Some(&node) = nodes.index.get(&op) {
+            return node;
+        }
+        debug_assert!(
+            op.children().all(|c| c.index() < nodes.ops.len()),
+            "operand of {op:?} is not in this graph"
+        );
+        let id = u32::try_from(nodes.ops.len()).expect("more than 2^32 nodes in a graph");
+        let node = Node(id);
+        nodes.ops.push(op);
+        nodes.index.insert(op, node);
+        node
+    }
+}
