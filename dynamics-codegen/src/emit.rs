@@ -1,0 +1,941 @@
+//! Straight-line Rust from the expression DAG.
+//!
+//! [`emit_function`] writes one function, generic over `T: Scalar` (the trait's path is
+//! given by the caller), taking fixed-size array references in a caller-given order and
+//! returning a fixed-size array, a matrix `[[T; C]; R]`, a scalar or a tuple of those
+//! ([`Output`]). Its body is one `let vN = …;` per live node of the graph, in the graph's
+//! topological order, then the output expression:
+//!
+//! ```text
+//! /// Bias torque of the pendulum.
+//! ///
+//! /// Op count: 2 mul, 0 add, 0 div, 1 trig.
+//! pub fn bias<T: Scalar>(q: &[T; 1], _v: &[T; 1]) -> [T; 1] {
+//!     let v0 = q[0];
+//!     let v1 = T::sin(v0);
+//!     let v2 = T::from_f64(9.81_f64);
+//!     ...
+//!     [v4]
+//! }
+//! ```
+//!
+//! - Constants are `T::from_f64(lit_f64)` with the shortest literal that round-trips
+//!   (Rust's `{:?}` formatting of `f64`); negative values as `-lit`; NaN and infinities as
+//!   `f64::NAN`, `f64::INFINITY`, `f64::NEG_INFINITY`.
+//! - Inputs are `q[3]`: constant indices into fixed-size arrays, checked at compile time.
+//! - When both `sin x` and `cos x` are live they are computed together by one
+//!   `let (vS, vC) = T::sin_cos(vX);` at the position of the first of them.
+//! - An argument the function does not read is named with a leading underscore.
+//! - No allocation, no branch, no panic.
+//!
+//! # Splitting long functions
+//!
+//! rustc's compile time grows roughly quadratically with the length of a function, so when
+//! more than [`FunctionSpec::split_threshold`] nodes are live the body is cut into pieces
+//! of about equal length. Each piece is an `#[inline(never)]` function nested inside the
+//! emitted function (so the emitted code stays a single item, usable at module level or in
+//! an `impl` block), and the emitted function only chains them:
+//!
+//! ```text
+//! pub fn f<T: Scalar>(q: &[T; 7], v: &[T; 7]) -> [T; 7] {
+//!     fn part_1<T: Scalar>(q: &[T; 7], v: &[T; 7]) -> [T; 40] { … [v12, v17, …] }
+//!     fn part_2<T: Scalar>(q: &[T; 7], carry: &[T; 40]) -> [T; 35] {
+//!         let [v12, v17, …] = *carry;
+//!         …
+//!     }
+//!     fn part_3<T: Scalar>(v: &[T; 7], carry: &[T; 35]) -> [T; 7] { … }
+//!     let carry_1 = part_1(q, v);
+//!     let carry_2 = part_2(q, &carry_1);
+//!     part_3(v, &carry_2)
+//! }
+//! ```
+//!
+//! The values crossing the boundary before piece `k + 1` — computed in piece `k` or
+//! earlier, used in piece `k + 1` or later or as an output — travel in one array
+//! `carry_k: [T; K]`, in id order, passed by reference. A piece returns the values crossing
+//! the next boundary: those it computes and
+//! those it passes through from its own `carry`. Constants and inputs are never carried:
+//! each piece re-reads the inputs and re-creates the constants it uses (both are free).
+//! The last piece returns the function's output.
+
+use crate::sym::{Array, Graph, LiveSet, Node, Op, OpCount};
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::{format_ident, quote};
+use std::collections::{BTreeSet, HashMap};
+
+/// The default [`FunctionSpec::split_threshold`].
+pub const DEFAULT_SPLIT_THRESHOLD: usize = 3000;
+
+/// One argument of the emitted function: `name: &[T; len]`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Arg {
+    /// The input array (its [`Array::name`] is the argument's name).
+    pub array: Array,
+    /// The array's length.
+    pub len: usize,
+}
+
+/// What the emitted function returns, and from which nodes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Output {
+    /// `T`.
+    Scalar(Node),
+    /// `[T; N]`.
+    Vector(Vec<Node>),
+    /// `[[T; C]; R]`, given as `R` rows of `C` nodes.
+    Matrix(Vec<Vec<Node>>),
+    /// A tuple of outputs, e.g. `([[T; 7]; 7], [T; 7])`.
+    Tuple(Vec<Output>),
+}
+
+impl Output {
+    /// Every node of the output, in order (repeats kept).
+    #[must_use]
+    pub fn nodes(&self) -> Vec<Node> {
+        let mut nodes = Vec::new();
+        self.collect_nodes(&mut nodes);
+        nodes
+    }
+
+    fn collect_nodes(&self, nodes: &mut Vec<Node>) {
+        match self {
+            Output::Scalar(n) => nodes.push(*n),
+            Output::Vector(v) => nodes.extend(v),
+            Output::Matrix(rows) => rows.iter().for_each(|r| nodes.extend(r)),
+            Output::Tuple(items) => items.iter().for_each(|o| o.collect_nodes(nodes)),
+        }
+    }
+
+    /// The Rust type, with `T` the scalar.
+    fn ty(&self) -> TokenStream {
+        match self {
+            Output::Scalar(_) => quote!(T),
+            Output::Vector(v) => {
+                let n = Literal::usize_unsuffixed(v.len());
+                quote!([T; #n])
+            }
+            Output::Matrix(rows) => {
+                let r = rows.len();
+                let c = rows.first().map_or(0, Vec::len);
+                assert!(
+                    rows.iter().all(|row| row.len() == c),
+                    "matrix output rows differ in length"
+                );
+                let (r, c) = (Literal::usize_unsuffixed(r), Literal::usize_unsuffixed(c));
+                quote!([[T; #c]; #r])
+            }
+            Output::Tuple(items) => {
+                let tys = items.iter().map(Output::ty);
+                quote!((#(#tys,)*))
+            }
+        }
+    }
+
+    /// The expression building the output from the nodes' variables.
+    fn expr(&self) -> TokenStream {
+        match self {
+            Output::Scalar(n) => {
+                let v = var(*n);
+                quote!(#v)
+            }
+            Output::Vector(v) => {
+                let vs = v.iter().map(|&n| var(n));
+                quote!([#(#vs),*])
+            }
+            Output::Matrix(rows) => {
+                let rows = rows.iter().map(|row| {
+                    let vs = row.iter().map(|&n| var(n));
+                    quote!([#(#vs),*])
+                });
+                quote!([#(#rows),*])
+            }
+            Output::Tuple(items) => {
+                let exprs = items.iter().map(Output::expr);
+                quote!((#(#exprs,)*))
+            }
+        }
+    }
+}
+
+/// Everything [`emit_function`] needs besides the graph.
+#[derive(Clone, Debug)]
+pub struct FunctionSpec {
+    /// The function's name.
+    pub name: Ident,
+    /// Its visibility (`pub` by default).
+    pub vis: syn::Visibility,
+    /// What it computes, for its doc comment (may span several lines; the op count line is
+    /// appended).
+    pub doc: String,
+    /// The path of the scalar trait, e.g. `::dynamics_runtime::Scalar`.
+    pub scalar_trait: syn::Path,
+    /// The arguments, in order. Every input the outputs read must be covered.
+    pub args: Vec<Arg>,
+    /// The return value.
+    pub output: Output,
+    /// Split into pieces when more nodes than this are live (see the module docs).
+    pub split_threshold: usize,
+}
+
+impl FunctionSpec {
+    /// A public function `name` over `scalar_trait`, with no doc text and the default split
+    /// threshold.
+    #[must_use]
+    pub fn new(name: &str, scalar_trait: syn::Path, args: Vec<Arg>, output: Output) -> Self {
+        FunctionSpec {
+            name: Ident::new(name, Span::call_site()),
+            vis: syn::parse_quote!(pub),
+            doc: String::new(),
+            scalar_trait,
+            args,
+            output,
+            split_threshold: DEFAULT_SPLIT_THRESHOLD,
+        }
+    }
+}
+
+/// The function described by `spec`, computing its outputs from `graph`; see the module
+/// documentation for its shape.
+///
+/// # Panics
+/// If a live input is not covered by `spec.args` (array missing or index out of range):
+/// that is a bug of the caller, not of the user's model.
+#[must_use]
+pub fn emit_function(graph: &Graph, spec: &FunctionSpec) -> TokenStream {
+    let outputs = spec.output.nodes();
+    let live = graph.live(&outputs);
+    let ops = graph.ops();
+    check_inputs(&ops, &live, &spec.args);
+
+    let plan = Plan::new(&ops, &live, &outputs, spec.split_threshold);
+    let trait_ = &spec.scalar_trait;
+    let name = &spec.name;
+    let vis = &spec.vis;
+    let ret = spec.output.ty();
+    let docs = doc_attrs(&spec.doc, &graph.op_count(&outputs));
+
+    let used = |array: Array| plan.pieces.iter().any(|p| p.arrays.contains(&array));
+    let params = spec.args.iter().map(|arg| {
+        let ident = if used(arg.array) {
+            format_ident!("{}", arg.array.name())
+        } else {
+            format_ident!("_{}", arg.array.name())
+        };
+        let len = Literal::usize_unsuffixed(arg.len);
+        quote!(#ident: &[T; #len])
+    });
+
+    let body = if plan.pieces.len() == 1 {
+        plan.piece_body(&ops, 0, &spec.output)
+    } else {
+        plan.chained_pieces(&ops, spec)
+    };
+
+    quote! {
+        #(#docs)*
+        #[allow(
+            clippy::too_many_lines,
+            clippy::approx_constant,
+            clippy::excessive_precision,
+            clippy::unreadable_literal,
+            clippy::similar_names,
+            clippy::many_single_char_names,
+            clippy::eq_op
+        )]
+        #[must_use]
+        #vis fn #name<T: #trait_>(#(#params),*) -> #ret {
+            #body
+        }
+    }
+}
+
+/// `#[doc]` attributes: the description, a blank line, and the op count.
+fn doc_attrs(doc: &str, count: &OpCount) -> Vec<TokenStream> {
+    let mut lines: Vec<String> = doc.lines().map(|l| format!(" {l}")).collect();
+    if !lines.is_empty() {
+        lines.push(String::new());
+    }
+    lines.push(format!(" Op count: {count}."));
+    lines.iter().map(|l| quote!(#[doc = #l])).collect()
+}
+
+/// Asserts that every live input is an element of one of the arguments.
+fn check_inputs(ops: &[Op], live: &LiveSet, args: &[Arg]) {
+    for node in live.nodes() {
+        if let Op::Input(r) = ops[node.index()] {
+            let arg = args.iter().find(|a| a.array == r.array);
+            assert!(
+                arg.is_some_and(|a| (r.index as usize) < a.len),
+                "input {r} is not covered by the function's arguments {args:?}"
+            );
+        }
+    }
+}
+
+/// The variable holding `node`'s value.
+fn var(node: Node) -> Ident {
+    format_ident!("{}", node.to_string())
+}
+
+/// One statement computing a non-leaf node (or a `sin`/`cos` pair).
+#[derive(Clone, Copy, Debug)]
+enum Step {
+    One(Node),
+    SinCos { sin: Node, cos: Node, arg: Node },
+}
+
+impl Step {
+    /// The position of the statement: its (first) node.
+    fn first(self) -> Node {
+        match self {
+            Step::One(n) => n,
+            Step::SinCos { sin, cos, .. } => sin.min(cos),
+        }
+    }
+
+    fn defines(self) -> impl Iterator<Item = Node> {
+        let (a, b) = match self {
+            Step::One(n) => (n, None),
+            Step::SinCos { sin, cos, .. } => (sin, Some(cos)),
+        };
+        std::iter::once(a).chain(b)
+    }
+}
+
+/// One piece of the body: a range of steps, the leaves they read, the arrays those leaves
+/// come from, and the values carried in from earlier pieces.
+#[derive(Debug, Default)]
+struct Piece {
+    steps: Vec<Step>,
+    leaves: BTreeSet<Node>,
+    arrays: BTreeSet<Array>,
+    carry_in: Vec<Node>,
+}
+
+/// The schedule of the whole function: steps in order, cut into pieces.
+struct Plan {
+    pieces: Vec<Piece>,
+}
+
+impl Plan {
+    fn new(ops: &[Op], live: &LiveSet, outputs: &[Node], threshold: usize) -> Self {
+        let steps = schedule(ops, live);
+        let n_pieces = live.count().div_ceil(threshold.max(1)).max(1);
+        let per_piece = steps.len().div_ceil(n_pieces).max(1);
+        let mut pieces: Vec<Piece> = steps
+            .chunks(per_piece)
+            .map(|chunk| Piece {
+                steps: chunk.to_vec(),
+                ..Piece::default()
+            })
+            .collect();
+        if pieces.is_empty() {
+            pieces.push(Piece::default());
+        }
+        let last = pieces.len() - 1;
+
+        // Where each non-leaf node is defined and last used (`pieces.len()` = an output).
+        let mut defined_in = HashMap::new();
+        let mut last_use: HashMap<Node, usize> = HashMap::new();
+        for (p, piece) in pieces.iter_mut().enumerate() {
+            for &step in &piece.steps {
+                defined_in.extend(step.defines().map(|n| (n, p)));
+                let operands: Vec<Node> = match step {
+                    Step::One(n) => ops[n.index()].children().collect(),
+                    Step::SinCos { arg, .. } => vec![arg],
+                };
+                for child in operands {
+                    if ops[child.index()].is_leaf() {
+                        piece.leaves.insert(child);
+                    } else {
+                        let l = last_use.entry(child).or_insert(p);
+                        *l = (*l).max(p);
+                    }
+                }
+            }
+        }
+        for &out in outputs {
+            if ops[out.index()].is_leaf() {
+                pieces[last].leaves.insert(out);
+            } else {
+                last_use.insert(out, pieces.len());
+            }
+        }
+
+        for (p, piece) in pieces.iter_mut().enumerate() {
+            piece.arrays = piece
+                .leaves
+                .iter()
+                .filter_map(|n| match ops[n.index()] {
+                    Op::Input(r) => Some(r.array),
+                    _ => None,
+                })
+                .collect();
+            let mut carry: Vec<Node> = last_use
+                .iter()
+                .filter(|&(n, &l)| defined_in[n] < p && p <= l)
+                .map(|(&n, _)| n)
+                .collect();
+            carry.sort_unstable();
+            piece.carry_in = carry;
+        }
+        Plan { pieces }
+    }
+
+    /// The statements of piece `p` and its result: the next piece's carry, or `output`.
+    fn piece_body(&self, ops: &[Op], p: usize, output: &Output) -> TokenStream {
+        let piece = &self.pieces[p];
+        let mut stmts = Vec::new();
+        if !piece.carry_in.is_empty() {
+            let names = piece.carry_in.iter().map(|&n| var(n));
+            stmts.push(quote!(let [#(#names),*] = *carry;));
+        }
+        // Leaves and steps merged in id order, which is topological.
+        let mut items: Vec<(Node, TokenStream)> = piece
+            .leaves
+            .iter()
+            .map(|&n| (n, let_node(n, ops[n.index()])))
+            .collect();
+        items.extend(piece.steps.iter().map(|&s| (s.first(), let_step(s, ops))));
+        items.sort_by_key(|(n, _)| *n);
+        stmts.extend(items.into_iter().map(|(_, stmt)| stmt));
+
+        let result = match self.pieces.get(p + 1) {
+            Some(next) => {
+                let names = next.carry_in.iter().map(|&n| var(n));
+                quote!([#(#names),*])
+            }
+            None => output.expr(),
+        };
+        quote!(#(#stmts)* #result)
+    }
+
+    /// The body of a split function: the pieces as nested functions, then their chain.
+    fn chained_pieces(&self, ops: &[Op], spec: &FunctionSpec) -> TokenStream {
+        let trait_ = &spec.scalar_trait;
+        let len_of = |array: Array| {
+            spec.args
+                .iter()
+                .find(|a| a.array == array)
+                .map_or(0, |a| a.len)
+        };
+        let n = self.pieces.len();
+        let mut fns = Vec::new();
+        let mut calls = Vec::new();
+        for (p, piece) in self.pieces.iter().enumerate() {
+            let part = format_ident!("part_{}", p + 1);
+            let carry = format_ident!("carry_{p}");
+            let mut params = Vec::new();
+            let mut args = Vec::new();
+            for &array in &piece.arrays {
+                let a = format_ident!("{}", array.name());
+                let len = Literal::usize_unsuffixed(len_of(array));
+                params.push(quote!(#a: &[T; #len]));
+                args.push(quote!(#a));
+            }
+            if !piece.carry_in.is_empty() {
+                let k = Literal::usize_unsuffixed(piece.carry_in.len());
+                params.push(quote!(carry: &[T; #k]));
+                args.push(quote!(&#carry));
+            }
+            let ret = match self.pieces.get(p + 1) {
+                Some(next) => {
+                    let k = Literal::usize_unsuffixed(next.carry_in.len());
+                    quote!([T; #k])
+                }
+                None => spec.output.ty(),
+            };
+            let doc = format!(" Piece {} of {n}.", p + 1);
+            let body = self.piece_body(ops, p, &spec.output);
+            fns.push(quote! {
+                #[doc = #doc]
+                #[inline(never)]
+                fn #part<T: #trait_>(#(#params),*) -> #ret {
+                    #body
+                }
+            });
+            if p + 1 < n {
+                let next = format_ident!("carry_{}", p + 1);
+                calls.push(quote!(let #next = #part(#(#args),*);));
+            } else {
+                calls.push(quote!(#part(#(#args),*)));
+            }
+        }
+        quote!(#(#fns)* #(#calls)*)
+    }
+}
+
+/// The live non-leaf nodes as statements, in order, with `sin x`/`cos x` pairs merged into
+/// one `sin_cos` step at the first of the two.
+fn schedule(ops: &[Op], live: &LiveSet) -> Vec<Step> {
+    let mut sin_of = HashMap::new();
+    let mut cos_of = HashMap::new();
+    for node in live.nodes() {
+        match ops[node.index()] {
+            Op::Sin(x) => {
+                sin_of.insert(x, node);
+            }
+            Op::Cos(x) => {
+                cos_of.insert(x, node);
+            }
+            _ => {}
+        }
+    }
+    let mut steps = Vec::new();
+    for node in live.nodes() {
+        let op = ops[node.index()];
+        let pair = match op {
+            Op::Sin(x) | Op::Cos(x) => sin_of.get(&x).zip(cos_of.get(&x)).map(|(&s, &c)| (x, s, c)),
+            _ => None,
+        };
+        match pair {
+            Some((arg, sin, cos)) if node == sin.min(cos) => {
+                steps.push(Step::SinCos { sin, cos, arg });
+            }
+            Some(_) => {} // the second of a pair, computed with the first
+            None if !op.is_leaf() => steps.push(Step::One(node)),
+            None => {}
+        }
+    }
+    steps
+}
+
+/// `let vN = …;` for a single node.
+fn let_node(node: Node, op: Op) -> TokenStream {
+    let v = var(node);
+    let expr = match op {
+        Op::Const(c) => {
+            let lit = f64_literal(c.value());
+            quote!(T::from_f64(#lit))
+        }
+        Op::Input(r) => {
+            let array = format_ident!("{}", r.array.name());
+            let index = Literal::u32_unsuffixed(r.index);
+            quote!(#array[#index])
+        }
+        Op::Add(a, b) => bin(a, quote!(+), b),
+        Op::Sub(a, b) => bin(a, quote!(-), b),
+        Op::Mul(a, b) => bin(a, quote!(*), b),
+        Op::Div(a, b) => bin(a, quote!(/), b),
+        Op::Neg(a) => {
+            let a = var(a);
+            quote!(-#a)
+        }
+        Op::Sin(a) => call("sin", a),
+        Op::Cos(a) => call("cos", a),
+        Op::Sqrt(a) => call("sqrt", a),
+    };
+    quote!(let #v = #expr;)
+}
+
+/// The statement of a step.
+fn let_step(step: Step, ops: &[Op]) -> TokenStream {
+    match step {
+        Step::One(n) => let_node(n, ops[n.index()]),
+        Step::SinCos { sin, cos, arg } => {
+            let (s, c, x) = (var(sin), var(cos), var(arg));
+            quote!(let (#s, #c) = T::sin_cos(#x);)
+        }
+    }
+}
+
+fn bin(a: Node, op: TokenStream, b: Node) -> TokenStream {
+    let (a, b) = (var(a), var(b));
+    quote!(#a #op #b)
+}
+
+fn call(f: &str, a: Node) -> TokenStream {
+    let f = format_ident!("{f}");
+    let a = var(a);
+    quote!(T::#f(#a))
+}
+
+/// An `f64` literal that round-trips exactly: Rust's `{:?}` formatting is the shortest
+/// decimal that parses back to the same value. Negative values are emitted as `-lit`;
+/// non-finite values as the `f64` associated constants.
+fn f64_literal(x: f64) -> TokenStream {
+    if x.is_nan() {
+        quote!(f64::NAN)
+    } else if x == f64::INFINITY {
+        quote!(f64::INFINITY)
+    } else if x == f64::NEG_INFINITY {
+        quote!(f64::NEG_INFINITY)
+    } else {
+        let lit = syn::LitFloat::new(&format!("{:?}_f64", x.abs()), Span::call_site());
+        if x.is_sign_negative() {
+            quote!(-#lit)
+        } else {
+            quote!(#lit)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{emit_function, f64_literal, Arg, FunctionSpec, Output};
+    use crate::sym::{Array, Graph, InputRef, Node};
+    use proc_macro2::TokenStream;
+    use std::fmt::Write as _;
+
+    fn pretty(tokens: TokenStream) -> String {
+        let item: syn::ItemFn = syn::parse2(tokens).expect("emitted code parses as a function");
+        prettyplease::unparse(&syn::File {
+            shebang: None,
+            attrs: Vec::new(),
+            items: vec![syn::Item::Fn(item)],
+        })
+    }
+
+    fn spec(name: &str, args: &[(Array, usize)], output: Output) -> FunctionSpec {
+        let args = args
+            .iter()
+            .map(|&(array, len)| Arg { array, len })
+            .collect();
+        FunctionSpec::new(name, syn::parse_quote!(Scalar), args, output)
+    }
+
+    /// Pendulum-like: τ = m·l²·a + m·g·l·sin q, plus cos q·v as a second output.
+    #[test]
+    fn golden_tiny_function() {
+        let g = Graph::new();
+        let q = g.input(Array::Q, 0);
+        let v = g.input(Array::V, 0);
+        let a = g.input(Array::A, 0);
+        let (s, c) = (g.sin(q), g.cos(q));
+        let tau = g.add(
+            g.mul(g.constant(0.5), a),
+            g.mul(g.constant(-9.81), s), // negative constant: shares nothing, emits a neg
+        );
+        let second = g.mul(c, v);
+        let mut spec = spec(
+            "pendulum",
+            &[(Array::Q, 1), (Array::V, 1), (Array::A, 1), (Array::Tau, 1)],
+            Output::Vector(vec![tau, second, q, g.constant(0.1)]),
+        );
+        spec.doc = "Inverse dynamics of a pendulum.\nSecond line.".to_string();
+        let text = pretty(emit_function(&g, &spec));
+        let expected = r"/// Inverse dynamics of a pendulum.
+/// Second line.
+///
+/// Op count: 3 mul, 1 add, 0 div, 2 trig.
+#[allow(
+    clippy::too_many_lines,
+    clippy::approx_constant,
+    clippy::excessive_precision,
+    clippy::unreadable_literal,
+    clippy::similar_names,
+    clippy::many_single_char_names,
+    clippy::eq_op
+)]
+#[must_use]
+pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) -> [T; 4] {
+    let v0 = q[0];
+    let v1 = v[0];
+    let v2 = a[0];
+    let (v3, v4) = T::sin_cos(v0);
+    let v5 = T::from_f64(0.5_f64);
+    let v6 = v2 * v5;
+    let v8 = T::from_f64(9.81_f64);
+    let v9 = v3 * v8;
+    let v11 = v6 - v9;
+    let v12 = v1 * v4;
+    let v13 = T::from_f64(0.1_f64);
+    [v11, v12, v0, v13]
+}
+";
+        assert_eq!(text, expected, "got:\n{text}");
+    }
+
+    #[test]
+    fn every_output_shape_parses() {
+        let g = Graph::new();
+        let x = g.input(Array::Q, 0);
+        let y = g.input(Array::P, 2);
+        let xy = g.mul(x, y);
+        let shapes = [
+            Output::Scalar(xy),
+            Output::Scalar(x),
+            Output::Scalar(g.constant(-2.0)),
+            Output::Vector(vec![]),
+            Output::Matrix(vec![vec![xy, x], vec![y, g.zero()]]),
+            Output::Tuple(vec![
+                Output::Matrix(vec![vec![xy]]),
+                Output::Vector(vec![x, x]),
+                Output::Scalar(y),
+            ]),
+            Output::Tuple(vec![Output::Scalar(xy)]),
+        ];
+        for output in shapes {
+            let s = spec("f", &[(Array::Q, 1), (Array::P, 3)], output.clone());
+            let text = pretty(emit_function(&g, &s));
+            syn::parse_str::<syn::ItemFn>(&text).expect("pretty text parses again");
+        }
+        let m = spec(
+            "m",
+            &[(Array::Q, 1), (Array::P, 3)],
+            Output::Matrix(vec![vec![xy, x]]),
+        );
+        assert!(pretty(emit_function(&g, &m)).contains("-> [[T; 2]; 1]"));
+        let t = spec(
+            "t",
+            &[(Array::Q, 1)],
+            Output::Tuple(vec![Output::Scalar(x)]),
+        );
+        assert!(pretty(emit_function(&g, &t)).contains("-> (T,)"));
+    }
+
+    #[test]
+    #[should_panic(expected = "not covered")]
+    fn an_input_outside_the_arguments_is_a_bug() {
+        let g = Graph::new();
+        let x = g.input(Array::Q, 3);
+        let _ = emit_function(&g, &spec("f", &[(Array::Q, 3)], Output::Scalar(x)));
+    }
+
+    #[test]
+    fn literals_round_trip_exactly() {
+        let mut values = vec![
+            0.0,
+            1.0,
+            -1.0,
+            0.1,
+            -9.81,
+            1.0 / 3.0,
+            std::f64::consts::PI,
+            1e-7,
+            6.02214076e23,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            5e-324,
+            -123_456_789.123_456_79,
+        ];
+        let mut bits: u64 = 0x0123_4567_89AB_CDEF;
+        for _ in 0..1000 {
+            bits = bits.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            let x = f64::from_bits(bits);
+            if x.is_finite() {
+                values.push(x);
+            }
+        }
+        for x in values {
+            let tokens = f64_literal(x);
+            let expr: syn::Expr = syn::parse2(tokens).expect("literal parses");
+            let (negative, lit) = match expr {
+                syn::Expr::Unary(u) => (true, *u.expr),
+                e => (false, e),
+            };
+            let syn::Expr::Lit(syn::ExprLit {
+                lit: syn::Lit::Float(lit),
+                ..
+            }) = lit
+            else {
+                panic!("not a float literal: {x:?}");
+            };
+            assert_eq!(lit.suffix(), "f64");
+            let parsed: f64 = lit.base10_parse().expect("parses as f64");
+            let parsed = if negative { -parsed } else { parsed };
+            assert_eq!(parsed.to_bits(), x.to_bits(), "{x:?} -> {lit}");
+        }
+        assert_eq!(f64_literal(f64::NAN).to_string(), "f64 :: NAN");
+        assert_eq!(
+            f64_literal(f64::NEG_INFINITY).to_string(),
+            "f64 :: NEG_INFINITY"
+        );
+    }
+
+    /// A chain that needs values across many statements: x_{i+1} = x_i·cos q_i + sin q_i·x_{i−3}.
+    fn long_chain(g: &Graph, n: usize) -> Vec<Node> {
+        let mut xs = vec![
+            g.input(Array::V, 0),
+            g.input(Array::V, 1),
+            g.input(Array::V, 2),
+        ];
+        for i in 0..n {
+            let q = g.input(Array::Q, i % 8);
+            let k = g.constant(1.0 + i as f64 / 16.0);
+            let prev = xs[xs.len() - 1];
+            let back = xs[xs.len() - 3];
+            let next = g.add(g.mul(prev, g.cos(q)), g.div(g.mul(g.sin(q), back), k));
+            xs.push(g.sub(next, g.mul(k, g.sqrt(g.mul(q, q)))));
+        }
+        vec![
+            xs[xs.len() - 1],
+            xs[n / 2],
+            xs[3],
+            g.input(Array::V, 1),
+            g.constant(2.5),
+        ]
+    }
+
+    #[test]
+    fn long_functions_are_split_into_pieces() {
+        let g = Graph::new();
+        let outputs = long_chain(&g, 200);
+        let live = g.live(&outputs).count();
+        let mut s = spec(
+            "chain",
+            &[(Array::Q, 8), (Array::V, 3)],
+            Output::Vector(outputs),
+        );
+        s.split_threshold = 300;
+        let text = pretty(emit_function(&g, &s));
+        let pieces = live.div_ceil(300);
+        assert!(pieces >= 3, "{live} live nodes");
+        for p in 1..=pieces {
+            assert!(text.contains(&format!("fn part_{p}<T: Scalar>")), "{text}");
+        }
+        assert!(!text.contains(&format!("fn part_{}", pieces + 1)));
+        assert!(text.contains("#[inline(never)]"));
+        assert!(text.contains("let [v"), "later pieces unpack their carry");
+        assert!(text.contains("let carry_1 = part_1(q, v);"), "{text}");
+        assert!(text.contains(&format!("part_{pieces}(v, &carry_{})", pieces - 1)));
+        syn::parse_str::<syn::File>(&text).expect("pretty text parses again");
+
+        s.split_threshold = live; // exactly at the threshold: not split
+        assert!(!pretty(emit_function(&g, &s)).contains("fn part_"));
+    }
+
+    /// `Scalar` as the runtime defines it, reduced to what generated code uses.
+    const SCALAR_STUB: &str = r"
+#[allow(dead_code)]
+mod rt {
+    pub trait Scalar:
+        Copy
+        + std::ops::Add<Output = Self>
+        + std::ops::Sub<Output = Self>
+        + std::ops::Mul<Output = Self>
+        + std::ops::Div<Output = Self>
+        + std::ops::Neg<Output = Self>
+    {
+        fn from_f64(x: f64) -> Self;
+        fn sin(self) -> Self;
+        fn cos(self) -> Self;
+        fn sqrt(self) -> Self;
+        fn sin_cos(self) -> (Self, Self) {
+            (self.sin(), self.cos())
+        }
+    }
+    impl Scalar for f64 {
+        fn from_f64(x: f64) -> Self { x }
+        fn sin(self) -> Self { f64::sin(self) }
+        fn cos(self) -> Self { f64::cos(self) }
+        fn sqrt(self) -> Self { f64::sqrt(self) }
+        fn sin_cos(self) -> (Self, Self) { f64::sin_cos(self) }
+    }
+}
+";
+
+    /// Compiles emitted functions with rustc (`-D warnings`) next to a `Scalar` stub, runs
+    /// them for `T = f64` and compares every output bit for bit with [`Graph::eval`]. This
+    /// is the one test that needs a Rust toolchain at test time (it always has one).
+    #[test]
+    fn emitted_code_compiles_cleanly_and_matches_eval() {
+        let g = Graph::new();
+        let chain = long_chain(&g, 120);
+        let q1 = g.input(Array::Q, 1);
+        let odd = [
+            g.constant(f64::NAN),
+            g.constant(f64::NEG_INFINITY),
+            g.constant(-0.1),
+            g.neg(g.sin(q1)),
+            g.cos(q1),
+        ];
+        let q: Vec<f64> = (0..8).map(|i| 0.3 * i as f64 - 1.1).collect();
+        let v = [0.7, -1.3, 2.1];
+        let input = |r: InputRef| match r.array {
+            Array::Q => q[r.index as usize],
+            _ => v[r.index as usize],
+        };
+
+        let args = [(Array::Q, 8), (Array::V, 3), (Array::Tau, 2)];
+        let mut split = spec("split", &args, Output::Vector(chain.clone()));
+        split.split_threshold = 200;
+        let whole = spec("whole", &args, Output::Vector(chain.clone()));
+        let matrix = spec(
+            "shaped",
+            &args,
+            Output::Tuple(vec![
+                Output::Matrix(vec![chain[..2].to_vec(), odd[..2].to_vec()]),
+                Output::Scalar(odd[2]),
+                Output::Vector(odd[3..].to_vec()),
+            ]),
+        );
+        let split_text = emit_function(&g, &split).to_string();
+        assert!(
+            split_text.contains("part_3"),
+            "split into at least 3 pieces"
+        );
+        let mut program = SCALAR_STUB.to_string();
+        for s in [&split, &whole, &matrix] {
+            let mut s = s.clone();
+            s.scalar_trait = syn::parse_quote!(crate::rt::Scalar);
+            program += &emit_function(&g, &s).to_string();
+            program += "\n";
+        }
+        let mut main = String::from("fn main() {\n");
+        writeln!(
+            main,
+            "    let q = {q:?};\n    let v = {v:?};\n    let tau = [0.0; 2];"
+        )
+        .ok();
+        writeln!(
+            main,
+            "    for x in split(&q, &v, &tau) {{ println!(\"{{x:?}}\"); }}"
+        )
+        .ok();
+        writeln!(
+            main,
+            "    for x in whole(&q, &v, &tau) {{ println!(\"{{x:?}}\"); }}"
+        )
+        .ok();
+        main += "    let (m, s, w) = shaped(&q, &v, &tau);\n";
+        main +=
+            "    for x in m.iter().flatten().chain([&s]).chain(&w) { println!(\"{x:?}\"); }\n}\n";
+        program += &main;
+
+        let mut expected = g.eval(input, &chain);
+        expected.extend(g.eval(input, &chain));
+        expected.extend(g.eval(input, &[chain[0], chain[1], odd[0], odd[1]]));
+        expected.extend(g.eval(input, &odd[2..]));
+
+        let dir = std::env::temp_dir().join(format!("dynamics-emit-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        let source = dir.join("emitted.rs");
+        let binary = dir.join("emitted");
+        std::fs::write(&source, &program).expect("write source");
+        let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".to_string());
+        let compiled = std::process::Command::new(rustc)
+            .args([
+                "--edition",
+                "2021",
+                "-D",
+                "warnings",
+                "-C",
+                "opt-level=0",
+                "-o",
+            ])
+            .arg(&binary)
+            .arg(&source)
+            .output()
+            .expect("run rustc");
+        assert!(
+            compiled.status.success(),
+            "rustc failed:\n{}\nsource: {}",
+            String::from_utf8_lossy(&compiled.stderr),
+            source.display()
+        );
+        let run = std::process::Command::new(&binary)
+            .output()
+            .expect("run binary");
+        assert!(run.status.success());
+        let printed: Vec<f64> = String::from_utf8_lossy(&run.stdout)
+            .lines()
+            .map(|l| l.parse().expect("an f64"))
+            .collect();
+        assert_eq!(printed.len(), expected.len());
+        for (i, (p, e)) in printed.iter().zip(&expected).enumerate() {
+            assert_eq!(p.to_bits(), e.to_bits(), "output {i}: {p} vs {e}");
+        }
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}
