@@ -651,7 +651,8 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
         let g = Graph::new();
         let x = g.input(Array::Q, 0);
         let y = g.input(Array::P, 2);
-        let xy = g.mul(x, y);
+        let f = g.input(Array::Loads, 5);
+        let xy = g.mul(x, g.add(y, f));
         let shapes = [
             Output::Scalar(xy),
             Output::Scalar(x),
@@ -666,13 +667,17 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
             Output::Tuple(vec![Output::Scalar(xy)]),
         ];
         for output in shapes {
-            let s = spec("f", &[(Array::Q, 1), (Array::P, 3)], output.clone());
+            let s = spec(
+                "f",
+                &[(Array::Q, 1), (Array::P, 3), (Array::Loads, 6)],
+                output.clone(),
+            );
             let text = pretty(emit_function(&g, &s));
             syn::parse_str::<syn::ItemFn>(&text).expect("pretty text parses again");
         }
         let m = spec(
             "m",
-            &[(Array::Q, 1), (Array::P, 3)],
+            &[(Array::Q, 1), (Array::P, 3), (Array::Loads, 6)],
             Output::Matrix(vec![vec![xy, x]]),
         );
         assert!(pretty(emit_function(&g, &m)).contains("-> [[T; 2]; 1]"));

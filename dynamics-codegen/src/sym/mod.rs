@@ -79,6 +79,8 @@ pub enum Array {
     Tau,
     /// Symbolic model parameters `p` (masses, lengths, ... left as inputs).
     P,
+    /// Applied loads `loads` (forces, couples, wrenches), 3 or 6 entries each.
+    Loads,
 }
 
 impl Array {
@@ -91,6 +93,7 @@ impl Array {
             Array::A => "a",
             Array::Tau => "tau",
             Array::P => "p",
+            Array::Loads => "loads",
         }
     }
 }
