@@ -6,10 +6,12 @@
 //! catch each other's mistakes.
 
 pub mod model;
+pub mod reference;
 pub mod scalar;
 
 pub use model::{
     BodySpec, Inertia, JointKind, JointSpec, JointType, Model, ModelBuilder, ModelError,
     ModelErrors, Placement, SizeError, GROUND,
 };
+pub use reference::{Pose, Reference, Wrench};
 pub use scalar::Scalar;

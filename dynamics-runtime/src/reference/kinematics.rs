@@ -1,0 +1,140 @@
+//! Forward kinematics: body placements and velocities, each in the frame its name says.
+//!
+//! Placement of body i in its parent λ (joint placement (R_J, p_J), joint coordinate q):
+//! - revolute about the unit axis s: `R = R_J Rot(s, q)`, `p = p_J`, with Rodrigues'
+//!   formula `Rot(s, q) = cos q 1 + sin q ŝ + (1 − cos q) s sᵀ`;
+//! - prismatic along s: `R = R_J`, `p = p_J + R_J s q`;
+//! - free flyer, `q = [x, y, z, qx, qy, qz, qw]`: `R = R_J R(quat)`, `p = p_J + R_J [x, y, z]`
+//!   (the quaternion must be unit, as in Pinocchio; it is not normalized here).
+//!
+//! Pose in the world: `R_0i = R_0λ R`, `p_0i = p_0λ + R_0λ p`.
+//!
+//! Velocities in the body frame (the seed's rigid-body velocity field, v_Q = v_P + ω × PQ):
+//! `ω_i = Rᵀ ω_λ + s q̇` (revolute), `v_P,i = Rᵀ (v_P,λ + ω_λ × p) + s q̇` (prismatic); a free
+//! flyer's v = [v_P; ω] is already in the body frame and its parent is the ground.
+
+use super::{BodyConstants, Motion, Pose, Reference};
+use crate::model::SizeError;
+use crate::scalar::Scalar;
+use nalgebra::{Matrix3, Vector3};
+
+/// Rotation by `angle` about the unit `axis` (Rodrigues).
+fn axis_angle<T: Scalar>(axis: &Vector3<T>, angle: T) -> Matrix3<T> {
+    let (sin, cos) = angle.sin_cos();
+    Matrix3::identity() * cos
+        + super::spatial::skew(axis) * sin
+        + axis * axis.transpose() * (T::one() - cos)
+}
+
+/// Rotation body → parent of a unit quaternion (x, y, z, w), scalar last.
+fn quaternion_rotation<T: Scalar>(x: T, y: T, z: T, w: T) -> Matrix3<T> {
+    let one = T::one();
+    let two = one + one;
+    Matrix3::new(
+        one - two * (y * y + z * z),
+        two * (x * y - z * w),
+        two * (x * z + y * w),
+        two * (x * y + z * w),
+        one - two * (x * x + z * z),
+        two * (y * z - x * w),
+        two * (x * z - y * w),
+        two * (y * z + x * w),
+        one - two * (x * x + y * y),
+    )
+}
+
+/// Pose (rotation body → parent, origin in parent) of a body at configuration q.
+pub(crate) fn pose_in_parent<T: Scalar>(
+    body: &BodyConstants<T>,
+    q: &[T],
+) -> (Matrix3<T>, Vector3<T>) {
+    let r_joint = &body.rotation_joint_in_parent;
+    let p_joint = &body.origin_joint_in_parent;
+    let qi = &q[body.idx_q..body.idx_q + body.motion_nq()];
+    match &body.motion {
+        Motion::Revolute { axis } => (r_joint * axis_angle(axis, qi[0]), *p_joint),
+        Motion::Prismatic { axis } => (*r_joint, p_joint + r_joint * axis * qi[0]),
+        Motion::FreeFlyer => (
+            r_joint * quaternion_rotation(qi[3], qi[4], qi[5], qi[6]),
+            p_joint + r_joint * Vector3::new(qi[0], qi[1], qi[2]),
+        ),
+    }
+}
+
+impl<T: Scalar> BodyConstants<T> {
+    /// Number of configuration coordinates of the joint.
+    pub(crate) fn motion_nq(&self) -> usize {
+        match self.motion {
+            Motion::FreeFlyer => 7,
+            _ => 1,
+        }
+    }
+}
+
+impl<T: Scalar> Reference<'_, T> {
+    /// Placements of every body in its parent and in the world, at q (length checked by the
+    /// caller).
+    pub(crate) fn update_placements(&mut self, q: &[T]) {
+        for i in 0..self.bodies.len() {
+            let (rotation, origin) = pose_in_parent(&self.bodies[i], q);
+            let pose = match self.bodies[i].parent {
+                None => Pose {
+                    rotation_in_world: rotation,
+                    origin_in_world: origin,
+                },
+                Some(p) => {
+                    let parent = self.poses[p];
+                    Pose {
+                        rotation_in_world: parent.rotation_in_world * rotation,
+                        origin_in_world: parent.origin_in_world + parent.rotation_in_world * origin,
+                    }
+                }
+            };
+            let s = &mut self.scratch[i];
+            s.rotation_in_parent = rotation;
+            s.origin_in_parent = origin;
+            self.poses[i] = pose;
+        }
+    }
+
+    /// ω and v_P of every body in its own frame, at v; needs [`Self::update_placements`].
+    pub(crate) fn update_velocities(&mut self, v: &[T]) {
+        for i in 0..self.bodies.len() {
+            let body = &self.bodies[i];
+            let (rotation, origin) = (
+                self.scratch[i].rotation_in_parent,
+                self.scratch[i].origin_in_parent,
+            );
+            let (parent_omega, parent_velocity) = match body.parent {
+                None => (Vector3::zeros(), Vector3::zeros()),
+                Some(p) => (
+                    self.scratch[p].omega_in_body,
+                    self.scratch[p].velocity_origin_in_body,
+                ),
+            };
+            let rt = rotation.transpose();
+            let mut omega_in_body = rt * parent_omega;
+            let mut velocity_origin_in_body = rt * (parent_velocity + parent_omega.cross(&origin));
+            let vi = &v[body.idx_v..body.idx_v + body.nv];
+            match &body.motion {
+                Motion::Revolute { axis } => omega_in_body += axis * vi[0],
+                Motion::Prismatic { axis } => velocity_origin_in_body += axis * vi[0],
+                Motion::FreeFlyer => {
+                    velocity_origin_in_body += Vector3::new(vi[0], vi[1], vi[2]);
+                    omega_in_body += Vector3::new(vi[3], vi[4], vi[5]);
+                }
+            }
+            let s = &mut self.scratch[i];
+            s.omega_in_body = omega_in_body;
+            s.velocity_origin_in_body = velocity_origin_in_body;
+        }
+    }
+
+    /// Forward kinematics: the pose of every body frame in the world at configuration q,
+    /// indexed like [`crate::Model::bodies`].
+    pub fn body_poses(&mut self, q: &[T]) -> Result<&[Pose<T>], SizeError> {
+        self.check_q(q)?;
+        self.update_placements(q);
+        Ok(&self.poses)
+    }
+}

@@ -1,0 +1,301 @@
+//! The independent numeric reference: the textbook algorithms on a runtime [`Model`].
+//!
+//! Everything here is written from the seed chapter (Satici, *Kinematics and Machine
+//! Dynamics*, ch. 10) and from Featherstone, *Rigid Body Dynamics Algorithms* (2008), and
+//! shares no code with the symbolic expansion, whose mistakes it exists to catch.
+//!
+//! One file per algorithm:
+//! - `spatial`: helpers for six-dimensional inertia, transforms and cross products,
+//!   linear first (motion `[v_P; ω]`, force `[F; M_P]`);
+//! - `kinematics`: placements, velocities and the body poses in the world;
+//! - `rnea`: recursive Newton–Euler in the seed's mass-centre form (inverse dynamics,
+//!   gravity, bias, nonlinear effects, joint reactions);
+//! - `crba`: composite-rigid-body algorithm, M(q);
+//! - `aba`: articulated-body algorithm, forward dynamics;
+//! - `coriolis`: a Christoffel-consistent C(q, v);
+//! - `energy`: kinetic and potential energy.
+//!
+//! # Workspace
+//! A [`Reference`] borrows the model, converts its `f64` constants to `T` once in
+//! [`Reference::new`] and preallocates every scratch quantity, so no method allocates
+//! afterwards. Each public method checks the lengths of its slices and returns a
+//! [`SizeError`] instead of panicking.
+//!
+//! # Conventions
+//! Body `i` is moved by joint `i` and `parent(i) < i`. Each body frame has its origin P at
+//! the joint point; `rotation_in_parent` maps body coordinates to parent coordinates and
+//! `origin_in_parent` is P in the parent frame. A free-floating joint has its parent on the
+//! ground (the model guarantees it): its velocity `v = [v_P; ω]` and `a = dv/dt` are
+//! expressed in the body frame, and its motion subspace S is the 6×6 identity. Armature adds
+//! to M's diagonal; damping b adds `b·q̇` to the torque a joint needs.
+
+mod aba;
+mod coriolis;
+mod crba;
+mod energy;
+mod kinematics;
+mod rnea;
+mod spatial;
+
+use crate::model::{JointKind, Model, SizeError};
+use crate::scalar::Scalar;
+use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
+
+/// An external wrench `[F; M_P]` acting ON a body, in that body's frame, with the moment
+/// taken about the body frame's origin P (the joint point).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Wrench<T: Scalar> {
+    /// Resultant force F, in the body frame (N).
+    pub force: Vector3<T>,
+    /// Moment M_P about the body frame's origin P, in the body frame (N·m).
+    pub moment: Vector3<T>,
+}
+
+impl<T: Scalar> Wrench<T> {
+    /// The zero wrench.
+    pub fn zero() -> Self {
+        Wrench {
+            force: Vector3::zeros(),
+            moment: Vector3::zeros(),
+        }
+    }
+
+    /// A wrench from its force and its moment about P.
+    pub fn new(force: Vector3<T>, moment: Vector3<T>) -> Self {
+        Wrench { force, moment }
+    }
+
+    /// The six-vector `[F; M_P]` (force first).
+    pub fn to_vector6(&self) -> Vector6<T> {
+        let f = &self.force;
+        let m = &self.moment;
+        Vector6::new(f[0], f[1], f[2], m[0], m[1], m[2])
+    }
+
+    /// The wrench of a six-vector `[F; M_P]`.
+    pub fn from_vector6(f: &Vector6<T>) -> Self {
+        Wrench {
+            force: Vector3::new(f[0], f[1], f[2]),
+            moment: Vector3::new(f[3], f[4], f[5]),
+        }
+    }
+}
+
+/// The pose of a body frame in the world: `x_in_world = rotation_in_world · x_in_body +
+/// origin_in_world`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pose<T: Scalar> {
+    /// Rotation from body coordinates to world coordinates.
+    pub rotation_in_world: Matrix3<T>,
+    /// The body frame's origin P, in the world frame (m).
+    pub origin_in_world: Vector3<T>,
+}
+
+impl<T: Scalar> Pose<T> {
+    fn identity() -> Self {
+        Pose {
+            rotation_in_world: Matrix3::identity(),
+            origin_in_world: Vector3::zeros(),
+        }
+    }
+}
+
+/// How a joint moves its body, with its constants converted to `T`.
+#[derive(Clone, Copy, Debug)]
+enum Motion<T: Scalar> {
+    /// Rotation by q about a unit axis (the same in the joint and the body frame).
+    Revolute { axis: Vector3<T> },
+    /// Translation by q along a unit axis (the same in the joint and the body frame).
+    Prismatic { axis: Vector3<T> },
+    /// Six degrees of freedom relative to the ground.
+    FreeFlyer,
+}
+
+/// One body and its joint: the model's constants, converted to `T` once.
+#[derive(Clone, Debug)]
+struct BodyConstants<T: Scalar> {
+    parent: Option<usize>,
+    motion: Motion<T>,
+    /// First coordinate of the joint in q, in v, and its number of velocity coordinates.
+    idx_q: usize,
+    idx_v: usize,
+    nv: usize,
+    /// Pose of the joint frame in the parent body frame at zero motion.
+    rotation_joint_in_parent: Matrix3<T>,
+    origin_joint_in_parent: Vector3<T>,
+    mass: T,
+    /// c = PG in the body frame.
+    com_in_body: Vector3<T>,
+    /// I_G in the body frame.
+    inertia_com_in_body: Matrix3<T>,
+    /// The seed's coupled matrix about P, `[[m1, −m ĉ], [m ĉ, I_P]]`, in the body frame.
+    spatial_inertia_in_body: Matrix6<T>,
+    /// Motion subspace S in the body frame: its first `nv` columns are the joint's.
+    motion_subspace_in_body: Matrix6<T>,
+    armature: T,
+    damping: T,
+}
+
+/// Per-body scratch of the algorithms, each quantity in the frame its name says.
+#[derive(Clone, Debug)]
+struct BodyScratch<T: Scalar> {
+    /// Pose of the body frame in the parent body frame at the current q.
+    rotation_in_parent: Matrix3<T>,
+    origin_in_parent: Vector3<T>,
+    /// Motion transform from parent coordinates to body coordinates (Featherstone's X).
+    x_from_parent: Matrix6<T>,
+    /// ω and the velocity v_P of the origin, in the body frame.
+    omega_in_body: Vector3<T>,
+    velocity_origin_in_body: Vector3<T>,
+    /// α and the classical acceleration a_P of the origin, in the body frame.
+    alpha_in_body: Vector3<T>,
+    accel_origin_in_body: Vector3<T>,
+    /// Wrench the joint transmits from the parent to this body, `[F; M_P]` in the body frame.
+    joint_wrench_in_body: Vector6<T>,
+    /// Composite (CRBA) or articulated (ABA) inertia about P, in the body frame.
+    inertia_6_in_body: Matrix6<T>,
+    /// ABA: articulated bias force, velocity-product acceleration c, spatial acceleration.
+    bias_force_in_body: Vector6<T>,
+    bias_accel_in_body: Vector6<T>,
+    spatial_accel_in_body: Vector6<T>,
+    /// ABA, one-coordinate joints: U = I^A S, D = Sᵀ U + armature, u = τ − b q̇ − Sᵀ p^A.
+    aba_u_vector: Vector6<T>,
+    aba_d: T,
+    aba_u: T,
+}
+
+/// The reference algorithms with their preallocated workspace, for one model.
+///
+/// Create once per model (and per thread) with [`Reference::new`]; afterwards no method
+/// allocates. The methods take `&mut self` only to reuse the scratch.
+#[derive(Clone, Debug)]
+pub struct Reference<'m, T: Scalar> {
+    model: &'m Model,
+    gravity_in_world: Vector3<T>,
+    bodies: Vec<BodyConstants<T>>,
+    scratch: Vec<BodyScratch<T>>,
+    /// Pose of every body frame in the world.
+    poses: Vec<Pose<T>>,
+    /// Coriolis: world-frame Jacobian column S_k and its rate v_j × S_k, per velocity index.
+    jacobian_column_in_world: Vec<Vector6<T>>,
+    jacobian_rate_column_in_world: Vec<Vector6<T>>,
+    /// Coriolis: the velocity indices supporting one body, and `B_i J_k + I_i J̇_k` for them.
+    support: Vec<usize>,
+    coriolis_work: Vec<Vector6<T>>,
+}
+
+impl<'m, T: Scalar> Reference<'m, T> {
+    /// The workspace for `model`: converts its constants to `T` and allocates all scratch.
+    pub fn new(model: &'m Model) -> Self {
+        let t = T::from_f64;
+        let vec3 = |v: &Vector3<f64>| v.map(t);
+        let mat3 = |m: &Matrix3<f64>| m.map(t);
+        let bodies: Vec<BodyConstants<T>> = model
+            .bodies()
+            .iter()
+            .map(|body| {
+                let joint = &body.joint;
+                let motion = match &joint.kind {
+                    JointKind::Revolute { axis_in_joint } => Motion::Revolute {
+                        axis: vec3(axis_in_joint),
+                    },
+                    JointKind::Prismatic { axis_in_joint } => Motion::Prismatic {
+                        axis: vec3(axis_in_joint),
+                    },
+                    JointKind::FreeFlyer => Motion::FreeFlyer,
+                };
+                let mass = t(body.inertia.mass);
+                let com_in_body = vec3(&body.inertia.com_in_body);
+                let inertia_com_in_body = mat3(&body.inertia.inertia_com_in_body);
+                BodyConstants {
+                    parent: body.parent,
+                    motion,
+                    idx_q: joint.idx_q,
+                    idx_v: joint.idx_v,
+                    nv: joint.kind.nv(),
+                    rotation_joint_in_parent: mat3(&joint.placement_in_parent.rotation),
+                    origin_joint_in_parent: vec3(&joint.placement_in_parent.translation),
+                    mass,
+                    com_in_body,
+                    inertia_com_in_body,
+                    spatial_inertia_in_body: spatial::spatial_inertia(
+                        mass,
+                        &com_in_body,
+                        &inertia_com_in_body,
+                    ),
+                    motion_subspace_in_body: spatial::motion_subspace(&motion),
+                    armature: t(joint.armature),
+                    damping: t(joint.damping),
+                }
+            })
+            .collect();
+        let zero6 = Vector6::zeros();
+        let scratch = vec![
+            BodyScratch {
+                rotation_in_parent: Matrix3::identity(),
+                origin_in_parent: Vector3::zeros(),
+                x_from_parent: Matrix6::identity(),
+                omega_in_body: Vector3::zeros(),
+                velocity_origin_in_body: Vector3::zeros(),
+                alpha_in_body: Vector3::zeros(),
+                accel_origin_in_body: Vector3::zeros(),
+                joint_wrench_in_body: zero6,
+                inertia_6_in_body: Matrix6::zeros(),
+                bias_force_in_body: zero6,
+                bias_accel_in_body: zero6,
+                spatial_accel_in_body: zero6,
+                aba_u_vector: zero6,
+                aba_d: T::zero(),
+                aba_u: T::zero(),
+            };
+            bodies.len()
+        ];
+        let nv = model.nv();
+        Reference {
+            model,
+            gravity_in_world: vec3(&model.gravity_in_world()),
+            poses: vec![Pose::identity(); bodies.len()],
+            bodies,
+            scratch,
+            jacobian_column_in_world: vec![zero6; nv],
+            jacobian_rate_column_in_world: vec![zero6; nv],
+            support: Vec::with_capacity(nv),
+            coriolis_work: vec![zero6; nv],
+        }
+    }
+
+    /// The model this workspace was made for.
+    pub fn model(&self) -> &'m Model {
+        self.model
+    }
+
+    fn check_q(&self, q: &[T]) -> Result<(), SizeError> {
+        SizeError::check("q", self.model.nq(), q.len())
+    }
+
+    fn check_v(&self, what: &'static str, v: &[T]) -> Result<(), SizeError> {
+        SizeError::check(what, self.model.nv(), v.len())
+    }
+
+    fn check_wrenches(
+        &self,
+        what: &'static str,
+        wrenches: Option<&[Wrench<T>]>,
+    ) -> Result<(), SizeError> {
+        match wrenches {
+            Some(w) => SizeError::check(what, self.bodies.len(), w.len()),
+            None => Ok(()),
+        }
+    }
+
+    /// Checks that an output matrix is nv × nv; `rows` and `cols` name its dimensions.
+    fn check_square(
+        &self,
+        rows: &'static str,
+        cols: &'static str,
+        m: &nalgebra::DMatrix<T>,
+    ) -> Result<(), SizeError> {
+        SizeError::check(rows, self.model.nv(), m.nrows())?;
+        SizeError::check(cols, self.model.nv(), m.ncols())
+    }
+}
