@@ -5,10 +5,15 @@
 //! written from the textbook, independently of the symbolic expansion, so that the two
 //! catch each other's mistakes.
 
+extern crate self as dynamics_runtime;
+
+pub mod mechanism;
 pub mod model;
 pub mod reference;
 pub mod scalar;
 
+pub use dynamics_macros::mechanism;
+pub use mechanism::Mechanism;
 pub use model::{
     BodySpec, Inertia, JointKind, JointSpec, JointType, Model, ModelBuilder, ModelError,
     ModelErrors, Placement, SizeError, GROUND,

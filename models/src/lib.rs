@@ -1,1 +1,6 @@
-//! Mechanisms declared with the toolkit.
+//! Mechanisms declared with the toolkit: the seed's examples and the Pinocchio anchor
+//! models (pendulums, a planar chain, UR5, Panda).
+
+pub mod anchors;
+pub mod seed;
+pub mod urdf_anchors;

@@ -134,6 +134,13 @@ pub enum ModelError {
         /// The joint.
         joint: String,
     },
+    /// A mechanism was given the wrong number of parameter values.
+    ParameterCount {
+        /// How many it declares.
+        expected: usize,
+        /// How many were given.
+        got: usize,
+    },
     /// A free-floating joint must attach its body to the ground.
     FreeFlyerNotOnGround {
         /// The joint.
@@ -254,6 +261,10 @@ impl fmt::Display for ModelError {
             GroundAsChild { joint } => {
                 write!(f, "joint `{joint}`: the ground cannot be a joint's child")
             }
+            ParameterCount { expected, got } => write!(
+                f,
+                "the mechanism declares {expected} parameters but {got} values were given"
+            ),
             FreeFlyerNotOnGround { joint, parent } => write!(
                 f,
                 "joint `{joint}`: a free-floating joint must attach its body to the ground, \

@@ -1,0 +1,158 @@
+//! Emits what a mechanism declares independently of its dynamics: the type, its doc
+//! comments, its `Mechanism` implementation (sizes, names, nominal parameters) and the
+//! runtime `Model` rebuilt from the same numbers.
+//!
+//! The runtime `Model` is built from the declaration as written (fixed joints included,
+//! numbers affine in the parameters), so the runtime merges and validates it on its own:
+//! that is what lets the reference catch a mistake of the compiler.
+
+use crate::model::{DeclaredBody, DeclaredJoint, Mat3, Model, Value, Vec3};
+use crate::syntax::JointKind;
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+
+/// A literal that round-trips the f64 exactly.
+pub fn float_literal(x: f64) -> TokenStream {
+    if x.is_finite() {
+        let lit = Literal::f64_suffixed(x.abs());
+        if x.is_sign_negative() && x != 0.0 {
+            quote!(-#lit)
+        } else {
+            quote!(#lit)
+        }
+    } else {
+        quote!(::core::f64::NAN)
+    }
+}
+
+/// `constant + Σ coefficient · parameters[k]` as an f64 expression.
+fn value_tokens(v: &Value) -> TokenStream {
+    let mut expr = float_literal(v.constant);
+    for &(k, c) in &v.terms {
+        let c = float_literal(c);
+        expr = quote!(#expr + #c * parameters[#k]);
+    }
+    expr
+}
+
+fn vec_tokens(v: &Vec3) -> TokenStream {
+    let [x, y, z] = [&v[0], &v[1], &v[2]].map(value_tokens);
+    quote!([#x, #y, #z])
+}
+
+fn mat_tokens(m: &Mat3) -> TokenStream {
+    let [a, b, c] = [&m[0], &m[1], &m[2]].map(vec_tokens);
+    quote!([#a, #b, #c])
+}
+
+fn rows_tokens(m: &[[f64; 3]; 3]) -> TokenStream {
+    let rows = m.iter().map(|r| {
+        let [x, y, z] = r.map(float_literal);
+        quote!([#x, #y, #z])
+    });
+    quote!([#(#rows),*])
+}
+
+fn body_tokens(rt: &TokenStream, b: &DeclaredBody) -> TokenStream {
+    let name = &b.name;
+    let (mass, com, inertia) = (
+        value_tokens(&b.mass),
+        vec_tokens(&b.com),
+        mat_tokens(&b.inertia),
+    );
+    quote!(.body(#rt::BodySpec::new(#name, #rt::Inertia::new(#mass, #com, #inertia))))
+}
+
+fn joint_tokens(rt: &TokenStream, j: &DeclaredJoint) -> TokenStream {
+    let (name, parent, child) = (&j.name, &j.parent, &j.child);
+    let axis = j.axis.map(float_literal);
+    let constructor = match j.kind {
+        JointKind::Revolute => quote!(revolute(#name, #parent, #child, [#(#axis),*])),
+        JointKind::Prismatic => quote!(prismatic(#name, #parent, #child, [#(#axis),*])),
+        JointKind::Fixed => quote!(fixed(#name, #parent, #child)),
+        JointKind::Free => quote!(free_flyer(#name, #child)),
+    };
+    let translation = vec_tokens(&j.translation);
+    let rotation = rows_tokens(&j.rotation);
+    let (armature, damping) = (value_tokens(&j.armature), value_tokens(&j.damping));
+    quote! {
+        .joint(#rt::JointSpec::#constructor
+            .placed(#translation, #rotation)
+            .with_armature(#armature)
+            .with_damping(#damping))
+    }
+}
+
+/// The mechanism's type and its `Mechanism` implementation.
+pub fn declare(model: &Model, rt: &TokenStream) -> TokenStream {
+    let name = &model.name;
+    let vis = &model.visibility;
+    let name_str = name.to_string();
+    let docs = &model.docs;
+    let (nq, nv) = (model.nq, model.nv);
+    let body_names = model.bodies.iter().map(|b| &b.name);
+    let joint_names = model.bodies.iter().map(|b| &b.joint.name);
+    let parameter_names = model.parameters.iter().map(|p| &p.name);
+    let nominal = model.parameters.iter().map(|p| float_literal(p.nominal));
+    let load_names = model.loads.iter().map(|l| &l.name);
+    let num_load_inputs = model.load_inputs;
+    let num_parameters = model.parameters.len();
+    let gravity = model.gravity_in_world.map(float_literal);
+    let bodies = model.declared_bodies.iter().map(|b| body_tokens(rt, b));
+    let joints = model.declared_joints.iter().map(|j| joint_tokens(rt, j));
+    let skip = model
+        .skip_triangle_inequality
+        .then(|| quote!(.skip_triangle_inequality()));
+    let sources = model.source_files.iter().map(|path| {
+        quote!(
+            const _: &[u8] = include_bytes!(#path);
+        )
+    });
+    let unused = (num_parameters == 0).then(|| quote!(let _ = parameters;));
+    quote! {
+        #(#[doc = #docs])*
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+        #vis struct #name;
+
+        #(#sources)*
+
+        impl #rt::Mechanism for #name {
+            const NAME: &'static str = #name_str;
+            const NQ: usize = #nq;
+            const NV: usize = #nv;
+            const BODY_NAMES: &'static [&'static str] = &[#(#body_names),*];
+            const JOINT_NAMES: &'static [&'static str] = &[#(#joint_names),*];
+            const PARAMETER_NAMES: &'static [&'static str] = &[#(#parameter_names),*];
+            const NOMINAL_PARAMETERS: &'static [f64] = &[#(#nominal),*];
+            const LOAD_NAMES: &'static [&'static str] = &[#(#load_names),*];
+            const NUM_LOAD_INPUTS: usize = #num_load_inputs;
+
+            fn model() -> #rt::Model {
+                match <Self as #rt::Mechanism>::model_with_parameters(Self::NOMINAL_PARAMETERS) {
+                    ::core::result::Result::Ok(model) => model,
+                    ::core::result::Result::Err(errors) => ::core::panic!(
+                        "mechanism `{}` passed the compile-time checks but the runtime rejects it \
+                         (a bug in dynamics-codegen): {}", #name_str, errors
+                    ),
+                }
+            }
+
+            fn model_with_parameters(
+                parameters: &[f64],
+            ) -> ::core::result::Result<#rt::Model, #rt::ModelErrors> {
+                if parameters.len() != #num_parameters {
+                    return ::core::result::Result::Err(#rt::ModelErrors(::std::vec![
+                        #rt::ModelError::ParameterCount { expected: #num_parameters, got: parameters.len() }
+                    ]));
+                }
+                #unused
+                #rt::ModelBuilder::new()
+                    .gravity([#(#gravity),*])
+                    #skip
+                    #(#bodies)*
+                    #(#joints)*
+                    .build()
+            }
+        }
+    }
+}

@@ -1,0 +1,41 @@
+//! Errors collected across rules: each at the span of the offending tokens.
+
+use proc_macro2::Span;
+
+/// The errors found so far.
+#[derive(Default, Debug)]
+pub struct Diagnostics {
+    errors: Vec<syn::Error>,
+}
+
+impl Diagnostics {
+    /// Records an error at a span.
+    pub fn error(&mut self, span: Span, message: impl std::fmt::Display) {
+        self.errors.push(syn::Error::new(span, message));
+    }
+
+    /// Records an already-built error.
+    pub fn push(&mut self, error: syn::Error) {
+        self.errors.push(error);
+    }
+
+    /// Whether any error was recorded.
+    pub fn has_errors(&self) -> bool {
+        !self.errors.is_empty()
+    }
+
+    /// `Ok` when no error was recorded, else all of them combined into one `syn::Error`
+    /// (which expands to one `compile_error!` per message).
+    pub fn into_result(&mut self) -> Result<(), syn::Error> {
+        let mut errors = std::mem::take(&mut self.errors).into_iter();
+        match errors.next() {
+            None => Ok(()),
+            Some(mut first) => {
+                for e in errors {
+                    first.combine(e);
+                }
+                Err(first)
+            }
+        }
+    }
+}

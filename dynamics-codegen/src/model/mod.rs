@@ -1,0 +1,298 @@
+//! The validated model: names resolved, bodies ordered so that `parent[i] < i`, bodies
+//! joined by fixed joints merged into composite bodies, every physical and structural rule
+//! checked.
+//!
+//! `lower` runs resolution and every rule, collecting all errors (each at the span of the
+//! offending tokens) before giving up, so the user sees every mistake at once. A model that
+//! comes out of `lower` is well-posed for the outputs it asks for.
+//!
+//! Frames and symbols are the seed's and the runtime's: a body's mass m, mass centre
+//! c = PG and I_G are expressed in the body frame; a joint's placement (R, p) is the pose of
+//! the joint frame in the parent body's frame; the body frame is the joint frame after the
+//! motion.
+
+mod diagnostics;
+mod resolve;
+mod rules;
+mod tree;
+pub mod value;
+
+pub use diagnostics::Diagnostics;
+pub use value::{Mat3, Value, Vec3};
+
+use crate::syntax;
+use proc_macro2::Span;
+
+/// Which functions to generate.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Outputs {
+    /// τ = M q̈ + C q̇ + g − Q.
+    pub inverse_dynamics: bool,
+    /// M(q).
+    pub mass_matrix: bool,
+    /// C(q, q̇) with Ṁ − 2C skew-symmetric.
+    pub coriolis: bool,
+    /// g(q).
+    pub gravity: bool,
+    /// C(q, q̇) q̇ + g(q).
+    pub bias: bool,
+    /// q̈ = M⁻¹ (τ + Q − C q̇ − g).
+    pub forward_dynamics: bool,
+    /// Kinetic and potential energy.
+    pub energy: bool,
+    /// The wrench each joint transmits to its child body.
+    pub reactions: bool,
+}
+
+impl Outputs {
+    /// The output names the language accepts, with their meaning.
+    pub const NAMES: [&'static str; 8] = [
+        "inverse_dynamics",
+        "mass_matrix",
+        "coriolis",
+        "gravity",
+        "bias",
+        "forward_dynamics",
+        "energy",
+        "reactions",
+    ];
+
+    /// Every output.
+    pub fn all() -> Self {
+        Outputs {
+            inverse_dynamics: true,
+            mass_matrix: true,
+            coriolis: true,
+            gravity: true,
+            bias: true,
+            forward_dynamics: true,
+            energy: true,
+            reactions: true,
+        }
+    }
+
+    /// Turns on the output with this name; `false` if the name is unknown.
+    pub fn enable(&mut self, name: &str) -> bool {
+        let flag = match name {
+            "inverse_dynamics" => &mut self.inverse_dynamics,
+            "mass_matrix" => &mut self.mass_matrix,
+            "coriolis" => &mut self.coriolis,
+            "gravity" => &mut self.gravity,
+            "bias" => &mut self.bias,
+            "forward_dynamics" => &mut self.forward_dynamics,
+            "energy" => &mut self.energy,
+            "reactions" => &mut self.reactions,
+            _ => return false,
+        };
+        *flag = true;
+        true
+    }
+
+    /// Whether any output needs at least one degree of freedom.
+    pub fn any_dynamics(&self) -> bool {
+        self.inverse_dynamics
+            || self.mass_matrix
+            || self.coriolis
+            || self.gravity
+            || self.bias
+            || self.forward_dynamics
+    }
+}
+
+/// A declared symbolic parameter: an input of the generated code.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Parameter {
+    /// Its name.
+    pub name: String,
+    /// The value `model()` and the compile-time checks use.
+    pub nominal: f64,
+}
+
+/// The motion a moving joint allows.
+#[derive(Clone, Debug, PartialEq)]
+pub enum JointKind {
+    /// Rotation about a unit axis of the joint frame.
+    Revolute {
+        /// Unit axis in the joint frame.
+        axis_in_joint: [f64; 3],
+    },
+    /// Translation along a unit axis of the joint frame.
+    Prismatic {
+        /// Unit axis in the joint frame.
+        axis_in_joint: [f64; 3],
+    },
+    /// A free-floating base (q: position + unit quaternion, scalar last; v: [v_P; ω] in
+    /// the body frame).
+    Free,
+}
+
+/// The joint that moves a body of the tree.
+#[derive(Clone, Debug)]
+pub struct Joint {
+    /// Its name.
+    pub name: String,
+    /// Its doc comments.
+    pub docs: Vec<String>,
+    /// Its motion.
+    pub kind: JointKind,
+    /// Rotation of the joint frame in the parent body frame (rows).
+    pub rotation_in_parent: [[f64; 3]; 3],
+    /// Origin of the joint frame in the parent body frame.
+    pub translation_in_parent: Vec3,
+    /// Rotor inertia reflected to each coordinate.
+    pub armature: Value,
+    /// Viscous friction coefficient of each coordinate.
+    pub damping: Value,
+    /// First coordinate in q.
+    pub idx_q: usize,
+    /// First coordinate in v.
+    pub idx_v: usize,
+}
+
+/// One declared body that is part of a (composite) body of the tree, already expressed in
+/// the tree body's frame.
+#[derive(Clone, Debug)]
+pub struct Part {
+    /// The declared body's name.
+    pub name: String,
+    /// Mass m.
+    pub mass: Value,
+    /// Mass centre in the tree body's frame.
+    pub com_in_body: Vec3,
+    /// I_G about the part's own mass centre, in the tree body's frame.
+    pub inertia_com_in_body: Mat3,
+}
+
+/// A (composite) body of the tree.
+#[derive(Clone, Debug)]
+pub struct Body {
+    /// The moving body's name.
+    pub name: String,
+    /// Its doc comments.
+    pub docs: Vec<String>,
+    /// The parent body (`None`: the ground); always smaller than this body's index.
+    pub parent: Option<usize>,
+    /// The joint that moves it.
+    pub joint: Joint,
+    /// The declared bodies it is made of (itself first, then bodies merged through fixed
+    /// joints).
+    pub parts: Vec<Part>,
+}
+
+/// Kind of an applied load.
+pub use syntax::LoadKind;
+
+/// An applied load: run-time inputs acting on a body of the tree.
+#[derive(Clone, Debug)]
+pub struct Load {
+    /// Its name.
+    pub name: String,
+    /// Its doc comments.
+    pub docs: Vec<String>,
+    /// Force, couple or wrench.
+    pub kind: LoadKind,
+    /// The body of the tree it acts on.
+    pub body: usize,
+    /// Rotation from the declared body's frame (in which the inputs are given) to the tree
+    /// body's frame.
+    pub rotation_in_body: [[f64; 3]; 3],
+    /// Point of application in the tree body's frame.
+    pub point_in_body: Vec3,
+    /// Index of the load's first component in the load input array.
+    pub input_offset: usize,
+}
+
+impl LoadKind {
+    /// Number of run-time inputs: 3 for a force or a couple, 6 for a wrench.
+    pub fn input_count(self) -> usize {
+        match self {
+            LoadKind::Wrench => 6,
+            LoadKind::Force | LoadKind::Couple => 3,
+        }
+    }
+}
+
+/// A declared body as written (before merging), for the runtime `Model`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DeclaredBody {
+    /// Name.
+    pub name: String,
+    /// Mass.
+    pub mass: Value,
+    /// Mass centre in its frame.
+    pub com: Vec3,
+    /// I_G in its frame.
+    pub inertia: Mat3,
+}
+
+/// A declared joint as written (including fixed ones), for the runtime `Model`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DeclaredJoint {
+    /// Name.
+    pub name: String,
+    /// Kind.
+    pub kind: syntax::JointKind,
+    /// Parent name (or `ground`).
+    pub parent: String,
+    /// Child name.
+    pub child: String,
+    /// Axis as given (zero for fixed and free joints).
+    pub axis: [f64; 3],
+    /// Translation in the parent frame.
+    pub translation: Vec3,
+    /// Rotation in the parent frame (rows).
+    pub rotation: [[f64; 3]; 3],
+    /// Armature.
+    pub armature: Value,
+    /// Damping.
+    pub damping: Value,
+}
+
+/// A validated mechanism, ready for expansion.
+#[derive(Clone, Debug)]
+pub struct Model {
+    /// The generated type's name.
+    pub name: syn::Ident,
+    /// Its visibility.
+    pub visibility: syn::Visibility,
+    /// Doc comments on the mechanism.
+    pub docs: Vec<String>,
+    /// Gravity in the world frame.
+    pub gravity_in_world: [f64; 3],
+    /// Symbolic parameters, in declaration order (the generated code's `p` input).
+    pub parameters: Vec<Parameter>,
+    /// Functions to generate.
+    pub outputs: Outputs,
+    /// Bodies of the tree, parents first.
+    pub bodies: Vec<Body>,
+    /// Applied loads, in declaration order.
+    pub loads: Vec<Load>,
+    /// Total number of load inputs.
+    pub load_inputs: usize,
+    /// Length of q.
+    pub nq: usize,
+    /// Length of v.
+    pub nv: usize,
+    /// The declared bodies (before merging), for the runtime `Model`.
+    pub declared_bodies: Vec<DeclaredBody>,
+    /// The declared joints, including fixed ones.
+    pub declared_joints: Vec<DeclaredJoint>,
+    /// Whether the triangle inequality was waived with `allow: [triangle_inequality]`.
+    pub skip_triangle_inequality: bool,
+    /// Files the declaration was read from (URDF), for rebuild tracking.
+    pub source_files: Vec<String>,
+}
+
+/// Validates a parsed mechanism. Every rule runs; all errors are returned together.
+pub fn lower(mechanism: &syntax::Mechanism) -> Result<Model, syn::Error> {
+    let mut diagnostics = Diagnostics::default();
+    let resolved = resolve::resolve(mechanism, &mut diagnostics);
+    rules::check_all(mechanism, &resolved, &mut diagnostics);
+    diagnostics.into_result()?;
+    let model = tree::build(mechanism, &resolved, &mut diagnostics);
+    diagnostics.into_result()?;
+    model.ok_or_else(|| syn::Error::new(Span::call_site(), "the mechanism could not be built"))
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,403 @@
+//! Resolution: numbers to affine values of the declared parameters, inertia forms and shapes
+//! to I_G, rotations to matrices, output and `allow` names to flags.
+//!
+//! Resolution reports what it cannot resolve (undeclared parameters, parameters where only a
+//! constant makes sense, missing fields) and carries every span on, for the rules.
+
+use super::value::{rotate_matrix, Mat3, Value, Vec3};
+use super::{rules, Diagnostics, Outputs, Parameter};
+use crate::syntax::{self, Axis, InertiaForm, Number, NumberValue, Rotation, ShapeKind};
+use proc_macro2::Span;
+
+/// A body with resolved numbers.
+pub(crate) struct ResolvedBody {
+    pub docs: Vec<String>,
+    pub name: syntax::Name,
+    pub mass: Value,
+    pub mass_span: Span,
+    pub com: Vec3,
+    pub inertia: Mat3,
+    pub inertia_span: Span,
+}
+
+/// A joint with resolved numbers.
+pub(crate) struct ResolvedJoint {
+    pub docs: Vec<String>,
+    pub name: syntax::Name,
+    pub kind: syntax::JointKind,
+    pub kind_span: Span,
+    pub parent: syntax::Name,
+    pub child: syntax::Name,
+    /// The axis as given, and its span (revolute and prismatic only).
+    pub axis: Option<([f64; 3], Span)>,
+    pub translation: Vec3,
+    pub rotation: [[f64; 3]; 3],
+    pub rotation_span: Span,
+    pub armature: (Value, Span),
+    pub damping: (Value, Span),
+}
+
+/// The whole declaration, resolved.
+pub(crate) struct Resolved {
+    pub parameters: Vec<Parameter>,
+    pub parameter_used: Vec<bool>,
+    pub bodies: Vec<ResolvedBody>,
+    pub joints: Vec<ResolvedJoint>,
+    pub outputs: Outputs,
+    pub skip_triangle_inequality: bool,
+    pub gravity: [f64; 3],
+}
+
+impl Resolved {
+    /// Nominal values of the parameters.
+    pub fn nominal_parameters(&self) -> Vec<f64> {
+        self.parameters.iter().map(|p| p.nominal).collect()
+    }
+}
+
+struct Resolver<'d> {
+    names: Vec<String>,
+    used: Vec<bool>,
+    diagnostics: &'d mut Diagnostics,
+}
+
+impl Resolver<'_> {
+    /// A number as an affine value; undeclared parameters are reported.
+    fn value(&mut self, number: &Number) -> Value {
+        match &number.value {
+            NumberValue::Constant(c) => {
+                rules::number_is_finite(*c, number.span, self.diagnostics);
+                Value::constant(*c)
+            }
+            NumberValue::Parameter { name, coefficient } => {
+                match self.names.iter().position(|n| n == name) {
+                    Some(k) => {
+                        self.used[k] = true;
+                        Value::parameter(k, *coefficient)
+                    }
+                    None => {
+                        rules::report_undeclared_parameter(name, number.span, self.diagnostics);
+                        Value::constant(0.0)
+                    }
+                }
+            }
+        }
+    }
+
+    /// A number that must be a constant (axes, rotations, shape dimensions).
+    fn constant(&mut self, number: &Number, what: &str) -> f64 {
+        match &number.value {
+            NumberValue::Constant(c) => {
+                rules::number_is_finite(*c, number.span, self.diagnostics);
+                *c
+            }
+            NumberValue::Parameter { name, .. } => {
+                rules::report_parameter_not_allowed(name, what, number.span, self.diagnostics);
+                if let Some(k) = self.names.iter().position(|n| n == name) {
+                    self.used[k] = true;
+                }
+                0.0
+            }
+        }
+    }
+
+    fn vector(&mut self, v: &syntax::Vector) -> Vec3 {
+        std::array::from_fn(|i| self.value(&v.components[i]))
+    }
+
+    fn constant_vector(&mut self, v: &syntax::Vector, what: &str) -> [f64; 3] {
+        std::array::from_fn(|i| self.constant(&v.components[i], what))
+    }
+
+    fn axis(&mut self, axis: &Axis) -> [f64; 3] {
+        self.constant_vector(&axis.direction, "an axis")
+    }
+
+    /// A rotation matrix (rows) from any rotation form.
+    fn rotation(&mut self, rotation: &Rotation) -> [[f64; 3]; 3] {
+        match rotation {
+            Rotation::Rpy(angles, _) => {
+                let [r, p, y] = std::array::from_fn(|i| self.constant(&angles[i], "a rotation"));
+                rows(nalgebra::Rotation3::from_euler_angles(r, p, y).matrix())
+            }
+            Rotation::AxisAngle(axis, angle, _) => {
+                let a = nalgebra::Vector3::from(self.constant_vector(axis, "a rotation"));
+                let angle = self.constant(angle, "a rotation");
+                if a.norm() == 0.0 || !a.norm().is_finite() {
+                    rules::report_zero_rotation_axis(rotation.span(), self.diagnostics);
+                    return IDENTITY;
+                }
+                let unit = nalgebra::Unit::new_normalize(a);
+                rows(nalgebra::Rotation3::from_axis_angle(&unit, angle).matrix())
+            }
+            Rotation::Matrix(m) => std::array::from_fn(|i| {
+                std::array::from_fn(|j| self.constant(&m.rows[i][j], "a rotation"))
+            }),
+        }
+    }
+
+    /// I_G from an inertia form; shapes scale with the (affine) mass.
+    fn inertia(&mut self, form: &InertiaForm, mass: &Value) -> Mat3 {
+        match form {
+            InertiaForm::Matrix(m) => {
+                std::array::from_fn(|i| std::array::from_fn(|j| self.value(&m.rows[i][j])))
+            }
+            InertiaForm::Principal {
+                moments, rotation, ..
+            } => {
+                let d = self.vector(moments);
+                let diagonal: Mat3 = std::array::from_fn(|i| {
+                    std::array::from_fn(|j| {
+                        if i == j {
+                            d[i].clone()
+                        } else {
+                            Value::constant(0.0)
+                        }
+                    })
+                });
+                match rotation {
+                    Some(r) => {
+                        let r = self.rotation(r);
+                        rotate_matrix(&r, &diagonal)
+                    }
+                    None => diagonal,
+                }
+            }
+            InertiaForm::Shape(shape) => {
+                let factors = self.shape_factors(&shape.kind);
+                std::array::from_fn(|i| {
+                    std::array::from_fn(|j| {
+                        if i == j {
+                            mass * factors[i]
+                        } else {
+                            Value::constant(0.0)
+                        }
+                    })
+                })
+            }
+        }
+    }
+
+    /// Principal moments of a unit-mass standard solid (I_G = m · factors).
+    fn shape_factors(&mut self, shape: &ShapeKind) -> [f64; 3] {
+        let mut dimension = |n: &Number| {
+            let v = self.constant(n, "a shape dimension");
+            rules::shape_dimension_is_not_negative(v, n.span, self.diagnostics);
+            v
+        };
+        match shape {
+            ShapeKind::Point => [0.0; 3],
+            ShapeKind::Sphere { radius } => [0.4 * dimension(radius).powi(2); 3],
+            ShapeKind::Box { size } => {
+                let [x, y, z] = std::array::from_fn(|i| dimension(&size.components[i]).powi(2));
+                [(y + z) / 12.0, (x + z) / 12.0, (x + y) / 12.0]
+            }
+            ShapeKind::Rod { length, axis } => {
+                let across = dimension(length).powi(2) / 12.0;
+                let along = self.axis(axis);
+                self.about_axis(along, 0.0, across, axis.span)
+            }
+            ShapeKind::Cylinder {
+                radius,
+                length,
+                axis,
+            } => {
+                let (r2, l2) = (dimension(radius).powi(2), dimension(length).powi(2));
+                let along = self.axis(axis);
+                self.about_axis(along, r2 / 2.0, (3.0 * r2 + l2) / 12.0, axis.span)
+            }
+        }
+    }
+
+    /// Factors of an axisymmetric solid whose axis is a coordinate axis.
+    fn about_axis(&mut self, axis: [f64; 3], along: f64, across: f64, span: Span) -> [f64; 3] {
+        let nonzero: Vec<usize> = (0..3).filter(|&i| axis[i] != 0.0).collect();
+        match nonzero.as_slice() {
+            [k] => std::array::from_fn(|i| if i == *k { along } else { across }),
+            _ => {
+                self.diagnostics.error(
+                    span,
+                    "a shape's axis must be a body axis: x, y or z (use `inertia: principal(..)` \
+                     for other orientations)",
+                );
+                [across; 3]
+            }
+        }
+    }
+}
+
+const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+
+fn rows(m: &nalgebra::Matrix3<f64>) -> [[f64; 3]; 3] {
+    std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
+}
+
+/// Resolves every number, form and name list of the declaration.
+pub(crate) fn resolve(mechanism: &syntax::Mechanism, diagnostics: &mut Diagnostics) -> Resolved {
+    let mut parameters = Vec::new();
+    for p in &mechanism.parameters {
+        let nominal = match p.nominal.value {
+            NumberValue::Constant(c) => {
+                rules::number_is_finite(c, p.nominal.span, diagnostics);
+                c
+            }
+            NumberValue::Parameter { .. } => {
+                diagnostics.error(
+                    p.nominal.span,
+                    "a parameter's nominal value must be a constant",
+                );
+                0.0
+            }
+        };
+        parameters.push(Parameter {
+            name: p.name.text.clone(),
+            nominal,
+        });
+    }
+    let mut r = Resolver {
+        names: parameters.iter().map(|p| p.name.clone()).collect(),
+        used: vec![false; parameters.len()],
+        diagnostics,
+    };
+    let gravity = match &mechanism.gravity {
+        Some(g) => r.constant_vector(g, "gravity"),
+        None => [0.0; 3],
+    };
+    let bodies = mechanism
+        .bodies
+        .iter()
+        .map(|b| resolve_body(&mut r, b))
+        .collect();
+    let joints = mechanism
+        .joints
+        .iter()
+        .map(|j| resolve_joint(&mut r, j))
+        .collect();
+    let outputs = resolve_outputs(&mechanism.outputs, r.diagnostics);
+    let mut skip_triangle_inequality = false;
+    for allow in &mechanism.allow {
+        match allow.text.as_str() {
+            "triangle_inequality" => skip_triangle_inequality = true,
+            other => r.diagnostics.error(
+                allow.span,
+                format!("unknown check `{other}` in `allow`; the only check that can be waived is `triangle_inequality`"),
+            ),
+        }
+    }
+    Resolved {
+        parameters,
+        parameter_used: r.used,
+        bodies,
+        joints,
+        outputs,
+        skip_triangle_inequality,
+        gravity,
+    }
+}
+
+fn resolve_body(r: &mut Resolver, body: &syntax::Body) -> ResolvedBody {
+    let (mass, mass_span) = match &body.mass {
+        Some(m) => (r.value(m), m.span),
+        None => {
+            rules::report_missing_field(&body.name, "mass", "mass: 1.0", body.span, r.diagnostics);
+            (Value::constant(0.0), body.span)
+        }
+    };
+    let com = match &body.com {
+        Some(c) => r.vector(c),
+        None => std::array::from_fn(|_| Value::constant(0.0)),
+    };
+    let (inertia, inertia_span) = match &body.inertia {
+        Some(form) => {
+            let span = match form {
+                InertiaForm::Matrix(m) => m.span,
+                InertiaForm::Principal { span, .. } => *span,
+                InertiaForm::Shape(s) => s.span,
+            };
+            (r.inertia(form, &mass), span)
+        }
+        None => {
+            rules::report_missing_field(
+                &body.name,
+                "inertia",
+                "inertia: [[..], [..], [..]], or shape: point for a point mass",
+                body.span,
+                r.diagnostics,
+            );
+            (
+                std::array::from_fn(|_| std::array::from_fn(|_| Value::constant(0.0))),
+                body.span,
+            )
+        }
+    };
+    ResolvedBody {
+        docs: body.docs.clone(),
+        name: body.name.clone(),
+        mass,
+        mass_span,
+        com,
+        inertia,
+        inertia_span,
+    }
+}
+
+fn resolve_joint(r: &mut Resolver, joint: &syntax::Joint) -> ResolvedJoint {
+    use syntax::JointKind::*;
+    let axis = match (&joint.axis, joint.kind) {
+        (Some(a), Revolute | Prismatic) => Some((r.axis(a), a.span)),
+        (None, Revolute | Prismatic) => {
+            rules::report_missing_field(
+                &joint.name,
+                "axis",
+                "axis: z",
+                joint.kind_span,
+                r.diagnostics,
+            );
+            None
+        }
+        (Some(a), Fixed | Free) => {
+            rules::report_axis_not_allowed(joint.kind, a.span, r.diagnostics);
+            None
+        }
+        (None, Fixed | Free) => None,
+    };
+    let translation = match &joint.at {
+        Some(v) => r.vector(v),
+        None => std::array::from_fn(|_| Value::constant(0.0)),
+    };
+    let (rotation, rotation_span) = match &joint.rotation {
+        Some(rot) => (r.rotation(rot), rot.span()),
+        None => (IDENTITY, joint.name.span),
+    };
+    let mut coefficient = |n: &Option<Number>| match n {
+        Some(n) => (r.value(n), n.span),
+        None => (Value::constant(0.0), joint.name.span),
+    };
+    let armature = coefficient(&joint.armature);
+    let damping = coefficient(&joint.damping);
+    ResolvedJoint {
+        docs: joint.docs.clone(),
+        name: joint.name.clone(),
+        kind: joint.kind,
+        kind_span: joint.kind_span,
+        parent: joint.parent.clone(),
+        child: joint.child.clone(),
+        axis,
+        translation,
+        rotation,
+        rotation_span,
+        armature,
+        damping,
+    }
+}
+
+fn resolve_outputs(names: &Option<Vec<syntax::Name>>, diagnostics: &mut Diagnostics) -> Outputs {
+    let Some(names) = names else {
+        return Outputs::all();
+    };
+    let mut outputs = Outputs::default();
+    for name in names {
+        rules::output_is_known(&mut outputs, name, diagnostics);
+    }
+    outputs
+}

@@ -1,0 +1,182 @@
+//! Unit tests of the front half: `quote!{}` in, validated model or spanned errors out.
+
+use super::*;
+use quote::quote;
+
+fn lower_tokens(tokens: proc_macro2::TokenStream) -> Result<Model, syn::Error> {
+    let mechanism: syntax::Mechanism = syn::parse2(tokens)?;
+    lower(&mechanism)
+}
+
+fn errors(tokens: proc_macro2::TokenStream) -> Vec<String> {
+    match lower_tokens(tokens) {
+        Ok(_) => Vec::new(),
+        Err(e) => e.into_iter().map(|e| e.to_string()).collect(),
+    }
+}
+
+#[test]
+fn falling_rod_lowers() {
+    let m = lower_tokens(quote! {
+        pub struct FallingRod;
+        gravity: [0.0, -9.81, 0.0];
+        body rod { mass: 2.0, com: [0.0, -0.3, 0.0], shape: rod(length: 0.6, axis: y) }
+        joint pivot: revolute(ground -> rod) { axis: z }
+    })
+    .expect("valid");
+    assert_eq!((m.nq, m.nv), (1, 1));
+    let i = value::nominal33(&m.bodies[0].parts[0].inertia_com_in_body, &[]);
+    assert!((i[0][0] - 0.06).abs() < 1e-15 && i[1][1] == 0.0 && (i[2][2] - 0.06).abs() < 1e-15);
+    assert_eq!(m.outputs, Outputs::all());
+}
+
+#[test]
+fn fixed_joints_merge_into_parts_in_the_parent_frame() {
+    let m = lower_tokens(quote! {
+        struct Arm;
+        body link { mass: 1.0, shape: point }
+        body tool { mass: 0.5, com: [0.0, 0.0, 0.1], shape: point }
+        joint j: revolute(ground -> link) { axis: z }
+        joint weld: fixed(link -> tool) { at: [1.0, 0.0, 0.0], rotation: rpy(0.0, 0.0, pi / 2.0) }
+        load push: force on tool at [0.0, 0.0, 0.2];
+    })
+    .expect("valid");
+    assert_eq!(m.bodies.len(), 1);
+    assert_eq!(m.bodies[0].parts.len(), 2);
+    assert_eq!(
+        value::nominal3(&m.bodies[0].parts[1].com_in_body, &[]),
+        [1.0, 0.0, 0.1]
+    );
+    assert_eq!(m.loads[0].body, 0);
+    assert_eq!(
+        value::nominal3(&m.loads[0].point_in_body, &[]),
+        [1.0, 0.0, 0.2]
+    );
+    assert_eq!(m.declared_joints.len(), 2);
+}
+
+#[test]
+fn parameters_stay_symbolic() {
+    let m = lower_tokens(quote! {
+        struct P;
+        parameters: [payload = 2.0];
+        body b { mass: payload, shape: sphere(radius: 0.1) }
+        joint j: prismatic(ground -> b) { axis: x }
+    })
+    .expect("valid");
+    let part = &m.bodies[0].parts[0];
+    assert_eq!(part.mass, Value::parameter(0, 1.0));
+    assert_eq!(
+        part.inertia_com_in_body[0][0],
+        Value::parameter(0, 0.004000000000000001)
+    );
+    assert_eq!(m.declared_bodies[0].mass.nominal(&[2.0]), 2.0);
+}
+
+#[test]
+fn errors_are_collected_not_stopped_at_the_first() {
+    let e = errors(quote! {
+        struct Bad;
+        outputs: [inverse_dynamics, jacobian];
+        body a { mass: -1.0, shape: point }
+        body b { mass: 1.0, inertia: [[1.0, 0.5, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] }
+        joint j1: revolute(ground -> a) { axis: [0, 0, 0] }
+        joint j2: revolute(nowhere -> b) { axis: z }
+    });
+    let joined = e.join("\n");
+    assert!(joined.contains("unknown output `jacobian`"), "{joined}");
+    assert!(joined.contains("mass -1 kg"), "{joined}");
+    assert!(joined.contains("not symmetric"), "{joined}");
+    assert!(joined.contains("zero length"), "{joined}");
+    assert!(joined.contains("unknown parent `nowhere`"), "{joined}");
+    assert_eq!(e.len(), 5, "{joined}");
+}
+
+#[test]
+fn structural_rules() {
+    let e = errors(quote! {
+        struct S;
+        body a { mass: 1.0, shape: point }
+        body b { mass: 1.0, shape: point }
+        body c { mass: 1.0, shape: point }
+        body lonely { mass: 1.0, shape: point }
+        joint j1: revolute(b -> a) { axis: z }
+        joint j2: revolute(a -> b) { axis: z }
+        joint j3: revolute(ground -> c) { axis: z }
+        joint j4: revolute(ground -> c) { axis: z }
+    })
+    .join("\n");
+    assert!(e.contains("cycle through bodies"), "{e}");
+    assert!(e.contains("`lonely` is not connected"), "{e}");
+    assert!(e.contains("already has a parent through joint `j3`"), "{e}");
+}
+
+#[test]
+fn physical_rules() {
+    let e = errors(quote! {
+        struct S;
+        allow: [everything];
+        body a { mass: 1.0, inertia: diag([1.0, 1.0, 3.0]) }
+        body b { mass: 1.0, inertia: diag([-1.0, 1.0, 1.0]) }
+        joint j1: revolute(ground -> a) { axis: z, rotation: [[1, 0, 0], [0, 1, 0], [0, 0, -1]] }
+        joint j2: revolute(a -> b) { axis: z, armature: -0.1, at: [1.0 / 0.0, 0, 0] }
+    })
+    .join("\n");
+    assert!(e.contains("triangle inequality"), "{e}");
+    assert!(e.contains("not positive semi-definite"), "{e}");
+    assert!(e.contains("determinant -1"), "{e}");
+    assert!(e.contains("armature -0.1"), "{e}");
+    assert!(e.contains("evaluates to inf"), "{e}");
+    assert!(e.contains("unknown check `everything`"), "{e}");
+}
+
+#[test]
+fn coordinate_without_inertia_is_rejected() {
+    // A point mass on the axis of its own revolute joint: no moment of inertia about z.
+    let e = errors(quote! {
+        struct S;
+        body a { mass: 1.0, com: [0.0, 0.0, 0.5], shape: point }
+        joint spin: revolute(ground -> a) { axis: z }
+    })
+    .join("\n");
+    assert!(
+        e.contains("coordinate of joint `spin` has no inertia"),
+        "{e}"
+    );
+    // The same point mass off the axis is fine.
+    assert!(errors(quote! {
+        struct S;
+        body a { mass: 1.0, com: [0.1, 0.0, 0.5], shape: point }
+        joint spin: revolute(ground -> a) { axis: z }
+    })
+    .is_empty());
+}
+
+#[test]
+fn parameter_rules() {
+    let e = errors(quote! {
+        struct S;
+        parameters: [unused = 1.0, length = 0.5];
+        body a { mass: missing, shape: rod(length: length, axis: x) }
+        joint j: revolute(ground -> a) { axis: z }
+    })
+    .join("\n");
+    assert!(e.contains("`missing` is not a declared parameter"), "{e}");
+    assert!(
+        e.contains("parameter `unused` is declared but never used"),
+        "{e}"
+    );
+    assert!(e.contains("cannot be used in a shape dimension"), "{e}");
+}
+
+#[test]
+fn no_degree_of_freedom() {
+    let e = errors(quote! {
+        struct S;
+        outputs: [mass_matrix];
+        body a { mass: 1.0, shape: point }
+        joint weld: fixed(ground -> a);
+    })
+    .join("\n");
+    assert!(e.contains("no degree of freedom"), "{e}");
+}

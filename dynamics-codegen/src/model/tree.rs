@@ -1,0 +1,364 @@
+//! The tree: bodies ordered depth first from the ground (parents first, children in
+//! declaration order, as Pinocchio orders URDF trees), fixed joints merged into composite
+//! bodies, coordinates numbered, and the rule that every coordinate has inertia.
+//!
+//! A body joined to its parent by a fixed joint becomes a [`Part`] of the parent's tree
+//! body, expressed in that body's frame: c' = R c + p, I_G' = R I_G Rᵀ. Joints and loads on
+//! a merged body are re-based the same way.
+
+use super::resolve::Resolved;
+use super::rules::{self, GROUND};
+use super::value::{self, nominal3, Value, Vec3};
+use super::{Body, DeclaredBody, DeclaredJoint, Diagnostics, Joint, JointKind, Load, Model, Part};
+use crate::syntax::{self, JointKind as Declared};
+use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
+use std::collections::HashMap;
+
+/// Where a declared body ended up: its tree body (`None`: the ground) and its pose there.
+#[derive(Clone)]
+struct Attachment {
+    body: Option<usize>,
+    rotation: [[f64; 3]; 3],
+    translation: Vec3,
+}
+
+const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+
+fn zero3() -> Vec3 {
+    std::array::from_fn(|_| Value::constant(0.0))
+}
+
+fn mat_mul(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
+}
+
+/// Builds the tree of a declaration that passed every rule of [`rules::check_all`].
+pub(crate) fn build(
+    mechanism: &syntax::Mechanism,
+    resolved: &Resolved,
+    d: &mut Diagnostics,
+) -> Option<Model> {
+    let body_index: HashMap<&str, usize> = resolved
+        .bodies
+        .iter()
+        .enumerate()
+        .map(|(i, b)| (b.name.text.as_str(), i))
+        .collect();
+    let order = depth_first_order(resolved, &body_index);
+    let mut attached: Vec<Option<Attachment>> = vec![None; resolved.bodies.len()];
+    let mut bodies: Vec<Body> = Vec::new();
+    let (mut nq, mut nv) = (0, 0);
+    for j in order {
+        let joint = &resolved.joints[j];
+        let parent = match joint.parent.text.as_str() {
+            GROUND => Attachment {
+                body: None,
+                rotation: IDENTITY,
+                translation: zero3(),
+            },
+            name => attached[*body_index.get(name)?].clone()?,
+        };
+        // Pose of the joint frame in the parent's tree body.
+        let rotation = mat_mul(&parent.rotation, &joint.rotation);
+        let translation = value::add(
+            &value::rotate(&parent.rotation, &joint.translation),
+            &parent.translation,
+        );
+        let child = *body_index.get(joint.child.text.as_str())?;
+        let declared = &resolved.bodies[child];
+        let kind = match (joint.kind, joint.axis) {
+            (Declared::Fixed, _) => {
+                if let Some(b) = parent.body {
+                    bodies[b].parts.push(Part {
+                        name: declared.name.text.clone(),
+                        mass: declared.mass.clone(),
+                        com_in_body: value::add(
+                            &value::rotate(&rotation, &declared.com),
+                            &translation,
+                        ),
+                        inertia_com_in_body: value::rotate_matrix(&rotation, &declared.inertia),
+                    });
+                }
+                attached[child] = Some(Attachment {
+                    body: parent.body,
+                    rotation,
+                    translation,
+                });
+                continue;
+            }
+            (Declared::Revolute, Some((axis, _))) => JointKind::Revolute {
+                axis_in_joint: unit(axis),
+            },
+            (Declared::Prismatic, Some((axis, _))) => JointKind::Prismatic {
+                axis_in_joint: unit(axis),
+            },
+            (Declared::Free, _) => JointKind::Free,
+            (Declared::Revolute | Declared::Prismatic, None) => return None,
+        };
+        let tree_joint = Joint {
+            name: joint.name.text.clone(),
+            docs: joint.docs.clone(),
+            rotation_in_parent: rotation,
+            translation_in_parent: translation,
+            armature: joint.armature.0.clone(),
+            damping: joint.damping.0.clone(),
+            idx_q: nq,
+            idx_v: nv,
+            kind,
+        };
+        let (dq, dv) = if tree_joint.kind == JointKind::Free {
+            (7, 6)
+        } else {
+            (1, 1)
+        };
+        nq += dq;
+        nv += dv;
+        attached[child] = Some(Attachment {
+            body: Some(bodies.len()),
+            rotation: IDENTITY,
+            translation: zero3(),
+        });
+        bodies.push(Body {
+            name: declared.name.text.clone(),
+            docs: declared.docs.clone(),
+            parent: parent.body,
+            joint: tree_joint,
+            parts: vec![Part {
+                name: declared.name.text.clone(),
+                mass: declared.mass.clone(),
+                com_in_body: declared.com.clone(),
+                inertia_com_in_body: declared.inertia.clone(),
+            }],
+        });
+    }
+    let nominal = resolved.nominal_parameters();
+    check_coordinates_have_inertia(&bodies, resolved, &nominal, d);
+    let mut loads = Vec::new();
+    let mut offset = 0;
+    for load in &mechanism.loads {
+        let declared = *body_index.get(load.body.text.as_str())?;
+        let at = attached[declared].clone()?;
+        let Some(body) = at.body else {
+            d.error(load.body.span, format!("load `{}` acts on `{}`, which is welded to the ground: it does no work and enters no dynamics", load.name.text, load.body.text));
+            continue;
+        };
+        let point = match &load.at {
+            Some(v) => {
+                std::array::from_fn(|i| resolve_constant_or_param(&v.components[i], resolved, d))
+            }
+            None => zero3(),
+        };
+        loads.push(Load {
+            name: load.name.text.clone(),
+            docs: load.docs.clone(),
+            kind: load.kind,
+            body,
+            rotation_in_body: at.rotation,
+            point_in_body: value::add(&value::rotate(&at.rotation, &point), &at.translation),
+            input_offset: offset,
+        });
+        offset += load.kind.input_count();
+    }
+    let declared_bodies = resolved
+        .bodies
+        .iter()
+        .map(|b| DeclaredBody {
+            name: b.name.text.clone(),
+            mass: b.mass.clone(),
+            com: b.com.clone(),
+            inertia: b.inertia.clone(),
+        })
+        .collect();
+    let declared_joints = resolved
+        .joints
+        .iter()
+        .map(|j| DeclaredJoint {
+            name: j.name.text.clone(),
+            kind: j.kind,
+            parent: j.parent.text.clone(),
+            child: j.child.text.clone(),
+            axis: j.axis.map_or([0.0; 3], |(a, _)| a),
+            translation: j.translation.clone(),
+            rotation: j.rotation,
+            armature: j.armature.0.clone(),
+            damping: j.damping.0.clone(),
+        })
+        .collect();
+    Some(Model {
+        name: mechanism.name.clone(),
+        visibility: mechanism.visibility.clone(),
+        docs: mechanism.docs.clone(),
+        gravity_in_world: resolved.gravity,
+        parameters: resolved.parameters.clone(),
+        outputs: resolved.outputs,
+        bodies,
+        loads,
+        load_inputs: offset,
+        nq,
+        nv,
+        declared_bodies,
+        declared_joints,
+        skip_triangle_inequality: resolved.skip_triangle_inequality,
+        source_files: Vec::new(),
+    })
+}
+
+/// A load's point: constants or parameters, resolved against the declared parameters.
+fn resolve_constant_or_param(
+    n: &syntax::Number,
+    resolved: &Resolved,
+    d: &mut Diagnostics,
+) -> Value {
+    match &n.value {
+        syntax::NumberValue::Constant(c) => Value::constant(*c),
+        syntax::NumberValue::Parameter { name, coefficient } => {
+            match resolved.parameters.iter().position(|p| &p.name == name) {
+                Some(k) => Value::parameter(k, *coefficient),
+                None => {
+                    rules::report_undeclared_parameter(name, n.span, d);
+                    Value::constant(0.0)
+                }
+            }
+        }
+    }
+}
+
+fn unit(axis: [f64; 3]) -> [f64; 3] {
+    let n = axis.iter().map(|a| a * a).sum::<f64>().sqrt();
+    axis.map(|a| a / n)
+}
+
+/// Joint indices in depth-first order from the ground, children in declaration order.
+fn depth_first_order(resolved: &Resolved, body_index: &HashMap<&str, usize>) -> Vec<usize> {
+    let mut children: HashMap<&str, Vec<usize>> = HashMap::new();
+    for (j, joint) in resolved.joints.iter().enumerate() {
+        children
+            .entry(joint.parent.text.as_str())
+            .or_default()
+            .push(j);
+    }
+    let mut order = Vec::new();
+    let mut stack: Vec<usize> = children
+        .get(GROUND)
+        .map(|c| c.iter().rev().copied().collect())
+        .unwrap_or_default();
+    let mut visited = vec![false; resolved.joints.len()];
+    while let Some(j) = stack.pop() {
+        if std::mem::replace(&mut visited[j], true) {
+            continue;
+        }
+        order.push(j);
+        let child = resolved.joints[j].child.text.as_str();
+        if body_index.contains_key(child) {
+            if let Some(c) = children.get(child) {
+                stack.extend(c.iter().rev().copied());
+            }
+        }
+    }
+    order
+}
+
+/// World poses (rotation, origin) of every tree body at configuration `angles` (one value
+/// per revolute or prismatic joint, free joints at identity).
+fn poses(
+    bodies: &[Body],
+    p: &[f64],
+    angles: impl Fn(usize) -> f64,
+) -> Vec<(Matrix3<f64>, Vector3<f64>)> {
+    let mut out: Vec<(Matrix3<f64>, Vector3<f64>)> = Vec::with_capacity(bodies.len());
+    for (i, body) in bodies.iter().enumerate() {
+        let (r_parent, o_parent) = body
+            .parent
+            .map_or((Matrix3::identity(), Vector3::zeros()), |k| out[k]);
+        let j = &body.joint;
+        let r_joint = r_parent * Matrix3::from_fn(|a, b| j.rotation_in_parent[a][b]);
+        let o_joint = o_parent + r_parent * Vector3::from(nominal3(&j.translation_in_parent, p));
+        out.push(match j.kind {
+            JointKind::Revolute { axis_in_joint } => {
+                let axis = Unit::new_normalize(Vector3::from(axis_in_joint));
+                (
+                    r_joint * Rotation3::from_axis_angle(&axis, angles(i)).matrix(),
+                    o_joint,
+                )
+            }
+            JointKind::Prismatic { axis_in_joint } => (
+                r_joint,
+                o_joint + r_joint * Vector3::from(axis_in_joint) * angles(i),
+            ),
+            JointKind::Free => (r_joint, o_joint),
+        });
+    }
+    out
+}
+
+/// Applies [`rules::coordinate_has_inertia`] to every joint, at three configurations.
+fn check_coordinates_have_inertia(
+    bodies: &[Body],
+    resolved: &Resolved,
+    p: &[f64],
+    d: &mut Diagnostics,
+) {
+    let configurations: [fn(usize) -> f64; 3] =
+        [|_| 0.0, |i| 0.7 + 0.9 * i as f64, |i| -1.3 + 0.4 * i as f64];
+    let in_subtree = |root: usize, mut k: usize| loop {
+        if k == root {
+            return true;
+        }
+        match bodies[k].parent {
+            Some(parent) if parent >= root => k = parent,
+            _ => return false,
+        }
+    };
+    let mut best = vec![0.0_f64; bodies.len()];
+    let mut scale = 0.0;
+    for body in bodies {
+        for part in &body.parts {
+            scale += part.mass.nominal(p).abs()
+                * (1.0 + Vector3::from(nominal3(&part.com_in_body, p)).norm_squared())
+                + rules::nominal_matrix(&part.inertia_com_in_body, p)
+                    .trace()
+                    .abs();
+        }
+    }
+    for configuration in configurations {
+        let world = poses(bodies, p, configuration);
+        for (j, body) in bodies.iter().enumerate() {
+            let (r_j, o_j) = world[j];
+            let mut mass = 0.0;
+            let mut inertia_about_origin = Matrix3::zeros();
+            for k in (j..bodies.len()).filter(|&k| in_subtree(j, k)) {
+                let (r_k, o_k) = world[k];
+                for part in &bodies[k].parts {
+                    let m = part.mass.nominal(p);
+                    let c = o_k + r_k * Vector3::from(nominal3(&part.com_in_body, p)) - o_j;
+                    let i_g =
+                        r_k * rules::nominal_matrix(&part.inertia_com_in_body, p) * r_k.transpose();
+                    mass += m;
+                    inertia_about_origin +=
+                        i_g + (Matrix3::identity() * c.norm_squared() - c * c.transpose()) * m;
+                }
+            }
+            let measure = match body.joint.kind {
+                JointKind::Revolute { axis_in_joint } => {
+                    let a = r_j * Vector3::from(axis_in_joint);
+                    (a.transpose() * inertia_about_origin * a)[(0, 0)]
+                }
+                JointKind::Prismatic { .. } => mass,
+                JointKind::Free => {
+                    let smallest = rules::principal_moments(&inertia_about_origin)[0];
+                    mass.min(smallest)
+                }
+            };
+            best[j] = best[j].max(measure);
+        }
+    }
+    for (j, body) in bodies.iter().enumerate() {
+        let joint = &resolved
+            .joints
+            .iter()
+            .find(|rj| rj.name.text == body.joint.name);
+        if let Some(joint) = joint {
+            rules::coordinate_has_inertia(&joint.name, joint.kind_span, best[j], scale, d);
+        }
+    }
+}

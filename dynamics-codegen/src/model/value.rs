@@ -1,0 +1,160 @@
+//! Numbers of a validated model: affine in the declared parameters,
+//! `value = constant + Σ_k coefficient_k · p[k]`.
+//!
+//! Affine values are closed under everything the model stage does to them (rotating a
+//! translation or an inertia by a constant rotation, composing placements, scaling by a
+//! shape's factor), so bodies merged through fixed joints stay exact. Products of
+//! parameters only arise in the symbolic expansion, which handles them itself.
+
+use std::ops::{Add, Mul};
+
+/// An affine function of the parameters.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Value {
+    /// The constant part.
+    pub constant: f64,
+    /// `(parameter index, coefficient)` pairs, sorted by index, no zero coefficients.
+    pub terms: Vec<(usize, f64)>,
+}
+
+impl Value {
+    /// A constant.
+    pub fn constant(constant: f64) -> Self {
+        Value {
+            constant,
+            terms: Vec::new(),
+        }
+    }
+
+    /// `coefficient · p[index]`.
+    pub fn parameter(index: usize, coefficient: f64) -> Self {
+        Value {
+            constant: 0.0,
+            terms: vec![(index, coefficient)],
+        }
+        .normalized()
+    }
+
+    /// Whether the value involves no parameter.
+    pub fn is_constant(&self) -> bool {
+        self.terms.is_empty()
+    }
+
+    /// The value at the parameters' nominal values.
+    pub fn nominal(&self, nominal_parameters: &[f64]) -> f64 {
+        self.terms.iter().fold(self.constant, |acc, &(k, c)| {
+            acc + c * nominal_parameters[k]
+        })
+    }
+
+    fn normalized(mut self) -> Self {
+        self.terms.sort_by_key(|&(k, _)| k);
+        let mut merged: Vec<(usize, f64)> = Vec::with_capacity(self.terms.len());
+        for (k, c) in self.terms {
+            match merged.last_mut() {
+                Some(last) if last.0 == k => last.1 += c,
+                _ => merged.push((k, c)),
+            }
+        }
+        merged.retain(|&(_, c)| c != 0.0);
+        self.terms = merged;
+        self
+    }
+}
+
+impl Add for &Value {
+    type Output = Value;
+    fn add(self, other: &Value) -> Value {
+        let mut terms = self.terms.clone();
+        terms.extend_from_slice(&other.terms);
+        Value {
+            constant: self.constant + other.constant,
+            terms,
+        }
+        .normalized()
+    }
+}
+
+impl Mul<f64> for &Value {
+    type Output = Value;
+    fn mul(self, factor: f64) -> Value {
+        Value {
+            constant: self.constant * factor,
+            terms: self.terms.iter().map(|&(k, c)| (k, c * factor)).collect(),
+        }
+        .normalized()
+    }
+}
+
+/// A vector of affine values.
+pub type Vec3 = [Value; 3];
+/// A 3×3 matrix of affine values, by rows.
+pub type Mat3 = [[Value; 3]; 3];
+
+/// `R v` for a constant rotation R (rows) and an affine vector v.
+pub fn rotate(r: &[[f64; 3]; 3], v: &Vec3) -> Vec3 {
+    std::array::from_fn(|i| (0..3).fold(Value::constant(0.0), |acc, j| &acc + &(&v[j] * r[i][j])))
+}
+
+/// `R M Rᵀ` for a constant rotation R and an affine matrix M.
+pub fn rotate_matrix(r: &[[f64; 3]; 3], m: &Mat3) -> Mat3 {
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            let mut acc = Value::constant(0.0);
+            for k in 0..3 {
+                for l in 0..3 {
+                    acc = &acc + &(&m[k][l] * (r[i][k] * r[j][l]));
+                }
+            }
+            acc
+        })
+    })
+}
+
+/// `a + b` componentwise.
+pub fn add(a: &Vec3, b: &Vec3) -> Vec3 {
+    std::array::from_fn(|i| &a[i] + &b[i])
+}
+
+/// Nominal values of a vector.
+pub fn nominal3(v: &Vec3, p: &[f64]) -> [f64; 3] {
+    std::array::from_fn(|i| v[i].nominal(p))
+}
+
+/// Nominal values of a matrix.
+pub fn nominal33(m: &Mat3, p: &[f64]) -> [[f64; 3]; 3] {
+    std::array::from_fn(|i| nominal3(&m[i], p))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn affine_arithmetic_merges_terms() {
+        let a = &Value::parameter(1, 2.0) + &Value::constant(3.0);
+        let b = &Value::parameter(1, -2.0) + &Value::parameter(0, 1.0);
+        let s = &a + &b;
+        assert_eq!(
+            s,
+            Value {
+                constant: 3.0,
+                terms: vec![(0, 1.0)]
+            }
+        );
+        assert_eq!(s.nominal(&[10.0, 100.0]), 13.0);
+        assert_eq!((&a * 0.5).nominal(&[0.0, 4.0]), 5.5);
+    }
+
+    #[test]
+    fn rotation_of_affine_vector() {
+        let rz90 = [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+        let v = [
+            Value::parameter(0, 1.0),
+            Value::constant(0.0),
+            Value::constant(2.0),
+        ];
+        let w = rotate(&rz90, &v);
+        assert_eq!(nominal3(&w, &[3.0]), [0.0, 3.0, 2.0]);
+    }
+}

@@ -1,0 +1,283 @@
+//! The syntax tree of a mechanism declaration. Every node keeps its span.
+
+use proc_macro2::Span;
+
+/// A number as written: a compile-time constant, or a parameter times a constant.
+#[derive(Clone, Debug)]
+pub struct Number {
+    /// What the number is.
+    pub value: NumberValue,
+    /// The tokens it came from.
+    pub span: Span,
+}
+
+/// The value of a [`Number`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum NumberValue {
+    /// A constant folded at compile time.
+    Constant(f64),
+    /// `coefficient · name`, where `name` must be a declared parameter.
+    Parameter {
+        /// The parameter's name.
+        name: String,
+        /// The constant it is scaled by.
+        coefficient: f64,
+    },
+}
+
+impl Number {
+    /// A constant at a span.
+    pub fn constant(value: f64, span: Span) -> Self {
+        Number {
+            value: NumberValue::Constant(value),
+            span,
+        }
+    }
+}
+
+/// An identifier with its span.
+#[derive(Clone, Debug)]
+pub struct Name {
+    /// The text.
+    pub text: String,
+    /// Where it was written.
+    pub span: Span,
+}
+
+/// Three numbers `[x, y, z]`.
+#[derive(Clone, Debug)]
+pub struct Vector {
+    /// The components.
+    pub components: [Number; 3],
+    /// The bracketed tokens.
+    pub span: Span,
+}
+
+/// A 3×3 matrix `[[..], [..], [..]]`, by rows.
+#[derive(Clone, Debug)]
+pub struct Matrix {
+    /// The rows.
+    pub rows: [[Number; 3]; 3],
+    /// The bracketed tokens.
+    pub span: Span,
+}
+
+/// A whole `mechanism!` invocation.
+#[derive(Clone, Debug)]
+pub struct Mechanism {
+    /// Doc comments on the mechanism (each line's text).
+    pub docs: Vec<String>,
+    /// Visibility of the generated type, as written.
+    pub visibility: syn::Visibility,
+    /// The generated type's name.
+    pub name: syn::Ident,
+    /// Gravity in the world frame (zero when absent).
+    pub gravity: Option<Vector>,
+    /// Requested outputs (all when absent).
+    pub outputs: Option<Vec<Name>>,
+    /// Declared symbolic parameters and their nominal values.
+    pub parameters: Vec<Parameter>,
+    /// Checks the user waived, with `allow: [...]`.
+    pub allow: Vec<Name>,
+    /// A URDF file the bodies and joints come from.
+    pub urdf: Option<UrdfSource>,
+    /// Bodies, in declaration order.
+    pub bodies: Vec<Body>,
+    /// Joints, in declaration order.
+    pub joints: Vec<Joint>,
+    /// Applied loads, in declaration order.
+    pub loads: Vec<Load>,
+}
+
+/// `urdf: "path";` with `floating_base: bool;`.
+#[derive(Clone, Debug)]
+pub struct UrdfSource {
+    /// The path as written, relative to the crate's manifest directory.
+    pub path: syn::LitStr,
+    /// Whether the root link gets a free-floating joint.
+    pub floating_base: bool,
+}
+
+/// `name = nominal` in `parameters: [...]`.
+#[derive(Clone, Debug)]
+pub struct Parameter {
+    /// The parameter's name (an input of the generated code).
+    pub name: Name,
+    /// The value used by `model()` and by the compile-time checks.
+    pub nominal: Number,
+}
+
+/// `body name { mass: .., com: .., inertia: .. | shape: .. }`.
+#[derive(Clone, Debug)]
+pub struct Body {
+    /// Doc comments.
+    pub docs: Vec<String>,
+    /// The body's name.
+    pub name: Name,
+    /// Mass m (kg).
+    pub mass: Option<Number>,
+    /// Mass centre c = PG in the body frame (m); the origin when absent.
+    pub com: Option<Vector>,
+    /// How I_G is given.
+    pub inertia: Option<InertiaForm>,
+    /// The whole `{ ... }` block.
+    pub span: Span,
+}
+
+/// The ways to give I_G, the inertia about the mass centre in the body frame.
+#[derive(Clone, Debug)]
+pub enum InertiaForm {
+    /// `inertia: [[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]]`.
+    Matrix(Matrix),
+    /// `inertia: diag([i1, i2, i3])` or `inertia: principal([i1, i2, i3], rpy: [r, p, y])`:
+    /// principal moments about principal axes rotated by R in the body frame, I_G = R D Rᵀ.
+    Principal {
+        /// The principal moments.
+        moments: Vector,
+        /// Orientation of the principal axes (identity when absent).
+        rotation: Option<Rotation>,
+        /// The whole form.
+        span: Span,
+    },
+    /// `shape: rod(length: l, axis: y)` and the like: I_G computed from the mass.
+    Shape(Shape),
+}
+
+/// A standard solid with its dimensions; I_G follows from the body's mass.
+#[derive(Clone, Debug)]
+pub struct Shape {
+    /// Which solid.
+    pub kind: ShapeKind,
+    /// The whole form.
+    pub span: Span,
+}
+
+/// The standard solids.
+#[derive(Clone, Debug)]
+pub enum ShapeKind {
+    /// A thin rod of length l along an axis: m l²/12 about the other two axes.
+    Rod {
+        /// Length (m).
+        length: Number,
+        /// Along which body axis.
+        axis: Axis,
+    },
+    /// A solid box with side lengths along x, y, z.
+    Box {
+        /// Side lengths (m).
+        size: Vector,
+    },
+    /// A solid cylinder of radius r and length l along an axis.
+    Cylinder {
+        /// Radius (m).
+        radius: Number,
+        /// Length (m).
+        length: Number,
+        /// Along which body axis.
+        axis: Axis,
+    },
+    /// A solid sphere of radius r.
+    Sphere {
+        /// Radius (m).
+        radius: Number,
+    },
+    /// A point mass: I_G = 0.
+    Point,
+}
+
+/// A direction: `x`, `-y`, ... or `[a, b, c]`.
+#[derive(Clone, Debug)]
+pub struct Axis {
+    /// The direction, not normalized.
+    pub direction: Vector,
+    /// Where it was written.
+    pub span: Span,
+}
+
+/// The ways to give a rotation.
+#[derive(Clone, Debug)]
+pub enum Rotation {
+    /// `rpy(roll, pitch, yaw)`: R = Rz(yaw) Ry(pitch) Rx(roll), as in URDF.
+    Rpy([Number; 3], Span),
+    /// `axis_angle([x, y, z], angle)`.
+    AxisAngle(Vector, Number, Span),
+    /// `[[..], [..], [..]]` by rows.
+    Matrix(Matrix),
+}
+
+impl Rotation {
+    /// The tokens the rotation came from.
+    pub fn span(&self) -> Span {
+        match self {
+            Rotation::Rpy(_, s) | Rotation::AxisAngle(_, _, s) => *s,
+            Rotation::Matrix(m) => m.span,
+        }
+    }
+}
+
+/// The kinds of joint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointKind {
+    /// Rotation about `axis`.
+    Revolute,
+    /// Translation along `axis`.
+    Prismatic,
+    /// No motion: the child merges into the parent.
+    Fixed,
+    /// A free-floating base (six degrees of freedom relative to the ground).
+    Free,
+}
+
+/// `joint name: kind(parent -> child) { axis: .., at: .., rotation: .., armature: .., damping: .. }`.
+#[derive(Clone, Debug)]
+pub struct Joint {
+    /// Doc comments.
+    pub docs: Vec<String>,
+    /// The joint's name.
+    pub name: Name,
+    /// The kind of motion.
+    pub kind: JointKind,
+    /// Where the kind was written.
+    pub kind_span: Span,
+    /// The parent body, or `ground`.
+    pub parent: Name,
+    /// The child body.
+    pub child: Name,
+    /// The axis in the joint frame (revolute and prismatic).
+    pub axis: Option<Axis>,
+    /// The joint frame's origin in the parent frame.
+    pub at: Option<Vector>,
+    /// The joint frame's rotation in the parent frame.
+    pub rotation: Option<Rotation>,
+    /// Rotor inertia reflected to the coordinate.
+    pub armature: Option<Number>,
+    /// Viscous friction coefficient.
+    pub damping: Option<Number>,
+}
+
+/// What an applied load is made of.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LoadKind {
+    /// A force (3 run-time inputs) through a point of the body.
+    Force,
+    /// A couple (3 run-time inputs).
+    Couple,
+    /// A force through a point and a couple (6 run-time inputs).
+    Wrench,
+}
+
+/// `load name: force on body at [x, y, z];`: a run-time input acting on a body, given in
+/// the body frame, through a point given in the body frame.
+#[derive(Clone, Debug)]
+pub struct Load {
+    /// Doc comments.
+    pub docs: Vec<String>,
+    /// The load's name.
+    pub name: Name,
+    /// Force, couple or both.
+    pub kind: LoadKind,
+    /// The body it acts on.
+    pub body: Name,
+    /// The point of application in the body frame (the origin when absent).
+    pub at: Option<Vector>,
+}

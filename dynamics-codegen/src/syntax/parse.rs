@@ -1,0 +1,756 @@
+//! Parsing `mechanism!` tokens into the syntax tree (syn).
+//!
+//! Items are `pub struct Name;`, settings `key: value;`, `body`, `joint` and `load`
+//! declarations, each optionally preceded by doc comments. Errors point at the offending
+//! token and say what was expected.
+
+use super::ast::*;
+use proc_macro2::Span;
+use syn::ext::IdentExt;
+use syn::parse::{Parse, ParseStream};
+use syn::punctuated::Punctuated;
+use syn::spanned::Spanned;
+use syn::{braced, bracketed, parenthesized, Attribute, Expr, Ident, LitBool, LitStr, Token};
+
+impl Parse for Mechanism {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let mut header: Option<(Vec<String>, syn::Visibility, Ident)> = None;
+        let mut mechanism = Mechanism {
+            docs: Vec::new(),
+            visibility: syn::Visibility::Inherited,
+            name: Ident::new("Mechanism", Span::call_site()),
+            gravity: None,
+            outputs: None,
+            parameters: Vec::new(),
+            allow: Vec::new(),
+            urdf: None,
+            bodies: Vec::new(),
+            joints: Vec::new(),
+            loads: Vec::new(),
+        };
+        let mut floating_base: Option<bool> = None;
+        while !input.is_empty() {
+            let docs = parse_docs(input)?;
+            if input.peek(Token![pub]) || input.peek(Token![struct]) {
+                let visibility: syn::Visibility = input.parse()?;
+                input.parse::<Token![struct]>()?;
+                let name: Ident = input.parse()?;
+                input.parse::<Token![;]>()?;
+                if header.is_some() {
+                    return Err(syn::Error::new(
+                        name.span(),
+                        "the mechanism's type is declared twice",
+                    ));
+                }
+                header = Some((docs, visibility, name));
+                continue;
+            }
+            let keyword: Ident = input.parse().map_err(|e| {
+                syn::Error::new(
+                    e.span(),
+                    "expected `pub struct Name;`, a setting (`gravity: ...;`), `body`, `joint` or `load`",
+                )
+            })?;
+            match keyword.to_string().as_str() {
+                "body" if input.peek(Ident) => mechanism.bodies.push(parse_body(input, docs)?),
+                "joint" if input.peek(Ident) => mechanism.joints.push(parse_joint(input, docs)?),
+                "load" if input.peek(Ident) => mechanism.loads.push(parse_load(input, docs)?),
+                setting => {
+                    input.parse::<Token![:]>()?;
+                    match setting {
+                        "gravity" => mechanism.gravity = Some(parse_vector(input)?),
+                        "outputs" => mechanism.outputs = Some(parse_name_list(input)?),
+                        "allow" => mechanism.allow = parse_name_list(input)?,
+                        "parameters" => mechanism.parameters = parse_parameters(input)?,
+                        "urdf" => {
+                            let path: LitStr = input.parse()?;
+                            mechanism.urdf = Some(UrdfSource { path, floating_base: false });
+                        }
+                        "floating_base" => floating_base = Some(input.parse::<LitBool>()?.value),
+                        _ => {
+                            return Err(syn::Error::new(
+                                keyword.span(),
+                                format!(
+                                    "unknown setting `{setting}`; expected one of gravity, outputs, \
+                                     parameters, allow, urdf, floating_base (or `body`, `joint`, `load`)"
+                                ),
+                            ))
+                        }
+                    }
+                    input.parse::<Token![;]>()?;
+                }
+            }
+        }
+        let Some((docs, visibility, name)) = header else {
+            return Err(syn::Error::new(
+                Span::call_site(),
+                "a mechanism starts with its type: `pub struct Name;`",
+            ));
+        };
+        mechanism.docs = docs;
+        mechanism.visibility = visibility;
+        mechanism.name = name;
+        if let (Some(urdf), Some(fb)) = (&mut mechanism.urdf, floating_base) {
+            urdf.floating_base = fb;
+        }
+        Ok(mechanism)
+    }
+}
+
+/// Doc comments (`///` lines) before an item.
+fn parse_docs(input: ParseStream) -> syn::Result<Vec<String>> {
+    let attrs = input.call(Attribute::parse_outer)?;
+    let mut docs = Vec::new();
+    for attr in attrs {
+        match &attr.meta {
+            syn::Meta::NameValue(nv) if nv.path.is_ident("doc") => {
+                if let Expr::Lit(syn::ExprLit {
+                    lit: syn::Lit::Str(s),
+                    ..
+                }) = &nv.value
+                {
+                    docs.push(s.value());
+                }
+            }
+            _ => {
+                return Err(syn::Error::new(
+                    attr.span(),
+                    "only doc comments are allowed here",
+                ))
+            }
+        }
+    }
+    Ok(docs)
+}
+
+fn parse_name(input: ParseStream) -> syn::Result<Name> {
+    let ident: Ident = input.parse()?;
+    Ok(Name {
+        text: ident.to_string(),
+        span: ident.span(),
+    })
+}
+
+/// `[a, b, c]` of identifiers.
+fn parse_name_list(input: ParseStream) -> syn::Result<Vec<Name>> {
+    let content;
+    bracketed!(content in input);
+    let idents = Punctuated::<Ident, Token![,]>::parse_terminated(&content)?;
+    Ok(idents
+        .into_iter()
+        .map(|i| Name {
+            text: i.to_string(),
+            span: i.span(),
+        })
+        .collect())
+}
+
+/// `[name = nominal, ...]`.
+fn parse_parameters(input: ParseStream) -> syn::Result<Vec<Parameter>> {
+    let content;
+    bracketed!(content in input);
+    let mut parameters = Vec::new();
+    while !content.is_empty() {
+        let name = parse_name(&content)?;
+        content.parse::<Token![=]>()?;
+        let nominal = parse_number(&content)?;
+        parameters.push(Parameter { name, nominal });
+        if content.is_empty() {
+            break;
+        }
+        content.parse::<Token![,]>()?;
+    }
+    Ok(parameters)
+}
+
+/// A number: a constant expression, or a parameter scaled by a constant.
+pub(crate) fn parse_number(input: ParseStream) -> syn::Result<Number> {
+    let expr: Expr = input.parse()?;
+    number_from_expr(&expr)
+}
+
+fn number_from_expr(expr: &Expr) -> syn::Result<Number> {
+    Ok(Number {
+        value: evaluate(expr)?,
+        span: expr.span(),
+    })
+}
+
+/// Evaluates a constant expression: literals, `pi`, unary minus, `+ - * /`, parentheses;
+/// an identifier is a parameter, which may only be scaled by constants.
+fn evaluate(expr: &Expr) -> syn::Result<NumberValue> {
+    use NumberValue::{Constant, Parameter};
+    let not_a_number = || {
+        syn::Error::new(
+            expr.span(),
+            "expected a number: a literal, `pi`, a parameter, or + - * / of these",
+        )
+    };
+    match expr {
+        Expr::Lit(lit) => match &lit.lit {
+            syn::Lit::Float(f) => f.base10_parse::<f64>().map(Constant),
+            syn::Lit::Int(i) => i.base10_parse::<f64>().map(Constant),
+            _ => Err(not_a_number()),
+        },
+        Expr::Paren(p) => evaluate(&p.expr),
+        Expr::Group(g) => evaluate(&g.expr),
+        Expr::Path(path) => {
+            let ident = path.path.get_ident().ok_or_else(not_a_number)?;
+            Ok(match ident.to_string().as_str() {
+                "pi" | "PI" => Constant(std::f64::consts::PI),
+                name => Parameter {
+                    name: name.to_owned(),
+                    coefficient: 1.0,
+                },
+            })
+        }
+        Expr::Unary(u) if matches!(u.op, syn::UnOp::Neg(_)) => Ok(match evaluate(&u.expr)? {
+            Constant(c) => Constant(-c),
+            Parameter { name, coefficient } => Parameter {
+                name,
+                coefficient: -coefficient,
+            },
+        }),
+        Expr::Binary(b) => {
+            let (l, r) = (evaluate(&b.left)?, evaluate(&b.right)?);
+            let only_scaled = || {
+                syn::Error::new(
+                    expr.span(),
+                    "a parameter can only be multiplied or divided by a constant here",
+                )
+            };
+            match (&b.op, l, r) {
+                (syn::BinOp::Add(_), Constant(x), Constant(y)) => Ok(Constant(x + y)),
+                (syn::BinOp::Sub(_), Constant(x), Constant(y)) => Ok(Constant(x - y)),
+                (syn::BinOp::Mul(_), Constant(x), Constant(y)) => Ok(Constant(x * y)),
+                (syn::BinOp::Div(_), Constant(x), Constant(y)) => Ok(Constant(x / y)),
+                (syn::BinOp::Mul(_), Constant(c), Parameter { name, coefficient })
+                | (syn::BinOp::Mul(_), Parameter { name, coefficient }, Constant(c)) => {
+                    Ok(Parameter {
+                        name,
+                        coefficient: coefficient * c,
+                    })
+                }
+                (syn::BinOp::Div(_), Parameter { name, coefficient }, Constant(c)) => {
+                    Ok(Parameter {
+                        name,
+                        coefficient: coefficient / c,
+                    })
+                }
+                (
+                    syn::BinOp::Add(_)
+                    | syn::BinOp::Sub(_)
+                    | syn::BinOp::Mul(_)
+                    | syn::BinOp::Div(_),
+                    _,
+                    _,
+                ) => Err(only_scaled()),
+                _ => Err(not_a_number()),
+            }
+        }
+        _ => Err(not_a_number()),
+    }
+}
+
+/// `[x, y, z]`.
+pub(crate) fn parse_vector(input: ParseStream) -> syn::Result<Vector> {
+    let content;
+    let bracket = bracketed!(content in input);
+    let span = bracket.span.join();
+    let exprs = Punctuated::<Expr, Token![,]>::parse_terminated(&content)?;
+    let numbers = exprs
+        .iter()
+        .map(number_from_expr)
+        .collect::<syn::Result<Vec<_>>>()?;
+    let components: [Number; 3] = numbers.try_into().map_err(|v: Vec<Number>| {
+        syn::Error::new(
+            span,
+            format!("expected 3 numbers `[x, y, z]`, found {}", v.len()),
+        )
+    })?;
+    Ok(Vector { components, span })
+}
+
+/// `[[a, b, c], [d, e, f], [g, h, i]]`.
+fn parse_matrix(input: ParseStream) -> syn::Result<Matrix> {
+    let content;
+    let bracket = bracketed!(content in input);
+    let span = bracket.span.join();
+    let mut rows = Vec::new();
+    while !content.is_empty() {
+        rows.push(parse_vector(&content)?.components);
+        if content.is_empty() {
+            break;
+        }
+        content.parse::<Token![,]>()?;
+    }
+    let rows: [[Number; 3]; 3] = rows.try_into().map_err(|v: Vec<[Number; 3]>| {
+        syn::Error::new(
+            span,
+            format!(
+                "expected a 3×3 matrix given by 3 rows, found {} rows",
+                v.len()
+            ),
+        )
+    })?;
+    Ok(Matrix { rows, span })
+}
+
+/// `x`, `-y`, `z` or `[a, b, c]`.
+fn parse_axis(input: ParseStream) -> syn::Result<Axis> {
+    if input.peek(syn::token::Bracket) {
+        let direction = parse_vector(input)?;
+        return Ok(Axis {
+            span: direction.span,
+            direction,
+        });
+    }
+    let minus: Option<Token![-]> = input.parse()?;
+    let ident: Ident = input.parse()?;
+    let span = match &minus {
+        Some(m) => m.span.join(ident.span()).unwrap_or(ident.span()),
+        None => ident.span(),
+    };
+    let sign = if minus.is_some() { -1.0 } else { 1.0 };
+    let unit = match ident.to_string().as_str() {
+        "x" => [sign, 0.0, 0.0],
+        "y" => [0.0, sign, 0.0],
+        "z" => [0.0, 0.0, sign],
+        other => {
+            return Err(syn::Error::new(
+                ident.span(),
+                format!("unknown axis `{other}`; expected x, y, z, -x, -y, -z or [a, b, c]"),
+            ))
+        }
+    };
+    let components = unit.map(|c| Number::constant(c, span));
+    Ok(Axis {
+        direction: Vector { components, span },
+        span,
+    })
+}
+
+/// `rpy(r, p, y)`, `axis_angle([x, y, z], angle)` or a 3×3 matrix.
+fn parse_rotation(input: ParseStream) -> syn::Result<Rotation> {
+    if input.peek(syn::token::Bracket) {
+        return Ok(Rotation::Matrix(parse_matrix(input)?));
+    }
+    let form: Ident = input.parse()?;
+    let content;
+    let paren = parenthesized!(content in input);
+    let span = form.span().join(paren.span.join()).unwrap_or(form.span());
+    match form.to_string().as_str() {
+        "rpy" => {
+            let exprs = Punctuated::<Expr, Token![,]>::parse_terminated(&content)?;
+            let numbers = exprs.iter().map(number_from_expr).collect::<syn::Result<Vec<_>>>()?;
+            let angles: [Number; 3] = numbers.try_into().map_err(|_| {
+                syn::Error::new(span, "expected `rpy(roll, pitch, yaw)` with three angles in radians")
+            })?;
+            Ok(Rotation::Rpy(angles, span))
+        }
+        "axis_angle" => {
+            let axis = parse_vector(&content)?;
+            content.parse::<Token![,]>()?;
+            let angle = parse_number(&content)?;
+            Ok(Rotation::AxisAngle(axis, angle, span))
+        }
+        other => Err(syn::Error::new(
+            form.span(),
+            format!("unknown rotation `{other}`; expected rpy(r, p, y), axis_angle([x, y, z], angle) or a 3×3 matrix"),
+        )),
+    }
+}
+
+/// Named arguments `name: value, ...` inside a shape or a `principal(...)` form.
+fn expect_arg(content: ParseStream, expected: &str) -> syn::Result<Span> {
+    let name: Ident = content.parse()?;
+    if name != expected {
+        return Err(syn::Error::new(
+            name.span(),
+            format!("expected `{expected}:` here"),
+        ));
+    }
+    content.parse::<Token![:]>()?;
+    Ok(name.span())
+}
+
+fn comma_unless_end(content: ParseStream) -> syn::Result<()> {
+    if !content.is_empty() {
+        content.parse::<Token![,]>()?;
+    }
+    Ok(())
+}
+
+/// `rod(length: l, axis: y)`, `box(size: [x, y, z])`, `cylinder(radius: r, length: l, axis: z)`,
+/// `sphere(radius: r)`, `point`.
+fn parse_shape(input: ParseStream) -> syn::Result<Shape> {
+    let form = Ident::parse_any(input)?;
+    let name = form.to_string();
+    if name == "point" {
+        return Ok(Shape {
+            kind: ShapeKind::Point,
+            span: form.span(),
+        });
+    }
+    let content;
+    let paren = parenthesized!(content in input);
+    let span = form.span().join(paren.span.join()).unwrap_or(form.span());
+    let kind = match name.as_str() {
+        "rod" => {
+            expect_arg(&content, "length")?;
+            let length = parse_number(&content)?;
+            content.parse::<Token![,]>()?;
+            expect_arg(&content, "axis")?;
+            let axis = parse_axis(&content)?;
+            ShapeKind::Rod { length, axis }
+        }
+        "box" => {
+            expect_arg(&content, "size")?;
+            ShapeKind::Box {
+                size: parse_vector(&content)?,
+            }
+        }
+        "cylinder" => {
+            expect_arg(&content, "radius")?;
+            let radius = parse_number(&content)?;
+            content.parse::<Token![,]>()?;
+            expect_arg(&content, "length")?;
+            let length = parse_number(&content)?;
+            content.parse::<Token![,]>()?;
+            expect_arg(&content, "axis")?;
+            let axis = parse_axis(&content)?;
+            ShapeKind::Cylinder {
+                radius,
+                length,
+                axis,
+            }
+        }
+        "sphere" => {
+            expect_arg(&content, "radius")?;
+            ShapeKind::Sphere {
+                radius: parse_number(&content)?,
+            }
+        }
+        other => {
+            return Err(syn::Error::new(
+                form.span(),
+                format!("unknown shape `{other}`; expected rod, box, cylinder, sphere or point"),
+            ))
+        }
+    };
+    comma_unless_end(&content)?;
+    if !content.is_empty() {
+        return Err(content.error("unexpected argument"));
+    }
+    Ok(Shape { kind, span })
+}
+
+/// `[[..]..]`, `diag([..])` or `principal([..], rotation: ...)`.
+fn parse_inertia(input: ParseStream) -> syn::Result<InertiaForm> {
+    if input.peek(syn::token::Bracket) {
+        return Ok(InertiaForm::Matrix(parse_matrix(input)?));
+    }
+    let form: Ident = input.parse()?;
+    let content;
+    let paren = parenthesized!(content in input);
+    let span = form.span().join(paren.span.join()).unwrap_or(form.span());
+    match form.to_string().as_str() {
+        "diag" => Ok(InertiaForm::Principal {
+            moments: parse_vector(&content)?,
+            rotation: None,
+            span,
+        }),
+        "principal" => {
+            let moments = parse_vector(&content)?;
+            let mut rotation = None;
+            if content.parse::<Option<Token![,]>>()?.is_some() && !content.is_empty() {
+                expect_arg(&content, "rotation")?;
+                rotation = Some(parse_rotation(&content)?);
+                comma_unless_end(&content)?;
+            }
+            Ok(InertiaForm::Principal {
+                moments,
+                rotation,
+                span,
+            })
+        }
+        other => Err(syn::Error::new(
+            form.span(),
+            format!(
+                "unknown inertia form `{other}`; expected a 3×3 matrix, diag([i1, i2, i3]) or \
+                 principal([i1, i2, i3], rotation: rpy(r, p, y))"
+            ),
+        )),
+    }
+}
+
+/// Parses `{ field: value, ... }`, calling `field` for each field name.
+fn parse_fields(
+    input: ParseStream,
+    mut field: impl FnMut(&Ident, ParseStream) -> syn::Result<bool>,
+) -> syn::Result<Span> {
+    let content;
+    let brace = braced!(content in input);
+    let mut seen: Vec<String> = Vec::new();
+    while !content.is_empty() {
+        let name: Ident = content.parse()?;
+        content.parse::<Token![:]>()?;
+        let text = name.to_string();
+        if seen.contains(&text) {
+            return Err(syn::Error::new(
+                name.span(),
+                format!("`{text}` is given twice"),
+            ));
+        }
+        if !field(&name, &content)? {
+            return Err(syn::Error::new(
+                name.span(),
+                format!("unknown field `{text}`"),
+            ));
+        }
+        seen.push(text);
+        comma_unless_end(&content)?;
+    }
+    Ok(brace.span.join())
+}
+
+/// `body name { mass: .., com: .., inertia: .. | shape: .. }`.
+fn parse_body(input: ParseStream, docs: Vec<String>) -> syn::Result<Body> {
+    let name = parse_name(input)?;
+    let (mut mass, mut com, mut inertia) = (None, None, None);
+    let span = parse_fields(input, |field, content| {
+        match field.to_string().as_str() {
+            "mass" => mass = Some(parse_number(content)?),
+            "com" => com = Some(parse_vector(content)?),
+            "inertia" | "shape" if inertia.is_some() => {
+                return Err(syn::Error::new(
+                    field.span(),
+                    "give either `inertia` or `shape`, not both",
+                ))
+            }
+            "inertia" => inertia = Some(parse_inertia(content)?),
+            "shape" => inertia = Some(InertiaForm::Shape(parse_shape(content)?)),
+            _ => return Ok(false),
+        }
+        Ok(true)
+    })
+    .map_err(|e| with_hint(e, "body fields are mass, com, inertia (or shape)"))?;
+    Ok(Body {
+        docs,
+        name,
+        mass,
+        com,
+        inertia,
+        span,
+    })
+}
+
+fn with_hint(error: syn::Error, hint: &str) -> syn::Error {
+    if error.to_string().starts_with("unknown field") {
+        syn::Error::new(error.span(), format!("{error}; {hint}"))
+    } else {
+        error
+    }
+}
+
+/// `joint name: kind(parent -> child) { ... }` or `... ;`.
+fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
+    let name = parse_name(input)?;
+    input.parse::<Token![:]>()?;
+    let kind_ident: Ident = input.parse()?;
+    let kind = match kind_ident.to_string().as_str() {
+        "revolute" | "continuous" => JointKind::Revolute,
+        "prismatic" => JointKind::Prismatic,
+        "fixed" => JointKind::Fixed,
+        "free" => JointKind::Free,
+        other => {
+            return Err(syn::Error::new(
+                kind_ident.span(),
+                format!(
+                    "unknown joint kind `{other}`; expected revolute, prismatic, fixed or free"
+                ),
+            ))
+        }
+    };
+    let content;
+    parenthesized!(content in input);
+    let parent = parse_name(&content)?;
+    content.parse::<Token![->]>()?;
+    let child = parse_name(&content)?;
+    let mut joint = Joint {
+        docs,
+        name,
+        kind,
+        kind_span: kind_ident.span(),
+        parent,
+        child,
+        axis: None,
+        at: None,
+        rotation: None,
+        armature: None,
+        damping: None,
+    };
+    if input.peek(Token![;]) {
+        input.parse::<Token![;]>()?;
+        return Ok(joint);
+    }
+    parse_fields(input, |field, content| {
+        match field.to_string().as_str() {
+            "axis" => joint.axis = Some(parse_axis(content)?),
+            "at" => joint.at = Some(parse_vector(content)?),
+            "rotation" => joint.rotation = Some(parse_rotation(content)?),
+            "armature" => joint.armature = Some(parse_number(content)?),
+            "damping" => joint.damping = Some(parse_number(content)?),
+            _ => return Ok(false),
+        }
+        Ok(true)
+    })
+    .map_err(|e| with_hint(e, "joint fields are axis, at, rotation, armature, damping"))?;
+    Ok(joint)
+}
+
+/// `load name: force|couple|wrench on body [at [x, y, z]];`.
+fn parse_load(input: ParseStream, docs: Vec<String>) -> syn::Result<Load> {
+    let name = parse_name(input)?;
+    input.parse::<Token![:]>()?;
+    let kind_ident: Ident = input.parse()?;
+    let kind = match kind_ident.to_string().as_str() {
+        "force" => LoadKind::Force,
+        "couple" => LoadKind::Couple,
+        "wrench" => LoadKind::Wrench,
+        other => {
+            return Err(syn::Error::new(
+                kind_ident.span(),
+                format!("unknown load `{other}`; expected force, couple or wrench"),
+            ))
+        }
+    };
+    let on: Ident = input.parse()?;
+    if on != "on" {
+        return Err(syn::Error::new(on.span(), "expected `on <body>`"));
+    }
+    let body = parse_name(input)?;
+    let mut at = None;
+    if input.peek(Ident) {
+        let at_kw: Ident = input.parse()?;
+        if at_kw != "at" {
+            return Err(syn::Error::new(
+                at_kw.span(),
+                "expected `at [x, y, z]` or `;`",
+            ));
+        }
+        at = Some(parse_vector(input)?);
+    }
+    input.parse::<Token![;]>()?;
+    Ok(Load {
+        docs,
+        name,
+        kind,
+        body,
+        at,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use quote::quote;
+
+    fn parse(tokens: proc_macro2::TokenStream) -> syn::Result<Mechanism> {
+        syn::parse2(tokens)
+    }
+
+    #[test]
+    fn parses_the_falling_rod() {
+        let m = parse(quote! {
+            /// The seed's falling rod.
+            pub struct FallingRod;
+            gravity: [0.0, -9.81, 0.0];
+            outputs: [inverse_dynamics, mass_matrix];
+            /// A uniform rod.
+            body rod { mass: 2.0, com: [0.0, -0.6 / 2.0, 0.0], shape: rod(length: 0.6, axis: y) }
+            joint pivot: revolute(ground -> rod) { axis: z, damping: 0.1 }
+            load tip: force on rod at [0.0, -0.6, 0.0];
+        })
+        .expect("parses");
+        assert_eq!(m.name, "FallingRod");
+        assert_eq!(m.docs, vec![" The seed's falling rod."]);
+        assert_eq!(m.bodies.len(), 1);
+        assert_eq!(m.bodies[0].docs, vec![" A uniform rod."]);
+        let com = m.bodies[0].com.as_ref().expect("com");
+        assert_eq!(com.components[1].value, NumberValue::Constant(-0.3));
+        assert_eq!(m.joints[0].kind, JointKind::Revolute);
+        assert_eq!(m.joints[0].parent.text, "ground");
+        assert_eq!(m.loads[0].kind, LoadKind::Force);
+        assert_eq!(m.outputs.as_ref().map(Vec::len), Some(2));
+    }
+
+    #[test]
+    fn numbers_fold_and_scale_parameters() {
+        let m = parse(quote! {
+            struct P;
+            parameters: [payload = 1.5];
+            body b { mass: -2 * payload / 4, com: [pi, -(1 + 2), 1e-3], inertia: diag([1, 1, 1]) }
+        })
+        .expect("parses");
+        let b = &m.bodies[0];
+        assert_eq!(
+            b.mass.as_ref().expect("mass").value,
+            NumberValue::Parameter {
+                name: "payload".into(),
+                coefficient: -0.5
+            }
+        );
+        let c = &b.com.as_ref().expect("com").components;
+        assert_eq!(c[0].value, NumberValue::Constant(std::f64::consts::PI));
+        assert_eq!(c[1].value, NumberValue::Constant(-3.0));
+        assert_eq!(m.parameters[0].nominal.value, NumberValue::Constant(1.5));
+    }
+
+    #[test]
+    fn rejects_parameter_sums_and_unknown_fields() {
+        let e = parse(quote! { struct P; body b { mass: m + 1.0 } }).expect_err("sum");
+        assert!(
+            e.to_string().contains("only be multiplied or divided"),
+            "{e}"
+        );
+        let e = parse(quote! { struct P; body b { weight: 1.0 } }).expect_err("field");
+        assert!(e.to_string().contains("unknown field `weight`"), "{e}");
+        let e = parse(quote! { body b { mass: 1.0 } }).expect_err("no type");
+        assert!(e.to_string().contains("pub struct Name"), "{e}");
+        let e = parse(quote! { struct P; joint j: hinge(ground -> b); }).expect_err("kind");
+        assert!(e.to_string().contains("unknown joint kind `hinge`"), "{e}");
+    }
+
+    #[test]
+    fn parses_rotations_axes_and_shapes() {
+        let m = parse(quote! {
+            struct P;
+            body a { mass: 1, shape: box(size: [0.1, 0.2, 0.3]) }
+            body b { mass: 1, inertia: principal([1, 2, 2.5], rotation: rpy(0, 0, pi / 2)) }
+            body c { mass: 1, shape: cylinder(radius: 0.1, length: 0.5, axis: -x) }
+            joint j1: prismatic(ground -> a) { axis: [1, 1, 0], rotation: axis_angle([0, 0, 1], 0.3) }
+            joint j2: fixed(a -> b) { at: [0, 0, 1], rotation: [[1, 0, 0], [0, 1, 0], [0, 0, 1]] }
+            joint j3: free(ground -> c);
+        })
+        .expect("parses");
+        assert!(matches!(
+            m.joints[0].rotation,
+            Some(Rotation::AxisAngle(..))
+        ));
+        assert!(matches!(m.joints[1].rotation, Some(Rotation::Matrix(..))));
+        assert_eq!(m.joints[2].kind, JointKind::Free);
+        match &m.bodies[2].inertia {
+            Some(InertiaForm::Shape(Shape {
+                kind: ShapeKind::Cylinder { axis, .. },
+                ..
+            })) => {
+                assert_eq!(
+                    axis.direction.components[0].value,
+                    NumberValue::Constant(-1.0)
+                )
+            }
+            other => panic!("unexpected {other:?}"),
+        }
+    }
+}

@@ -1,0 +1,41 @@
+//! The trait that every `mechanism!` type implements.
+//!
+//! It carries what is known at compile time (sizes, names, nominal parameter values) and
+//! rebuilds the same mechanism as a runtime [`Model`], so the reference algorithms can run on
+//! exactly the numbers the generated code was expanded from. The generated dynamics functions
+//! themselves are inherent associated functions of the type, with fixed-size array arguments.
+
+use crate::model::{Model, ModelErrors};
+
+/// A mechanism declared with `mechanism!`.
+pub trait Mechanism {
+    /// The type's name.
+    const NAME: &'static str;
+    /// Length of the configuration vector q.
+    const NQ: usize;
+    /// Length of the velocity vector v (degrees of freedom).
+    const NV: usize;
+    /// Names of the moving bodies of the tree (bodies merged through fixed joints excluded),
+    /// parents first.
+    const BODY_NAMES: &'static [&'static str];
+    /// Names of the joints that move those bodies, in the same order.
+    const JOINT_NAMES: &'static [&'static str];
+    /// Names of the symbolic parameters (the generated code's `p` input).
+    const PARAMETER_NAMES: &'static [&'static str];
+    /// The parameters' nominal values, as declared.
+    const NOMINAL_PARAMETERS: &'static [f64];
+    /// Names of the applied loads (the generated code's `loads` input, in this order).
+    const LOAD_NAMES: &'static [&'static str];
+    /// Length of the loads input: 3 per force or couple, 6 per wrench.
+    const NUM_LOAD_INPUTS: usize;
+
+    /// The runtime model with the parameters at their nominal values.
+    ///
+    /// # Panics
+    /// Never for a mechanism that compiled: the macro checked the same rules at compile time.
+    fn model() -> Model;
+
+    /// The runtime model with the given parameter values, validated again (a parameter
+    /// value can make the mechanism ill-posed, e.g. a negative mass).
+    fn model_with_parameters(parameters: &[f64]) -> Result<Model, ModelErrors>;
+}
