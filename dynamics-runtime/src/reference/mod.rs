@@ -299,3 +299,186 @@ impl<'m, T: Scalar> Reference<'m, T> {
         SizeError::check(cols, self.model.nv(), m.ncols())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::spatial::{
+        force_cross, force_cross_matrix, motion_cross, motion_cross_matrix, motion_transform,
+        solve_spd6, spatial_inertia,
+    };
+    use super::*;
+    use crate::model::{BodySpec, Inertia, JointSpec, ModelBuilder};
+    use nalgebra::DMatrix;
+
+    /// A free-flyer base carrying a revolute and a prismatic joint.
+    fn small_tree() -> Model {
+        let body = |name: &str| {
+            BodySpec::new(
+                name,
+                Inertia::new(
+                    1.2,
+                    [0.1, 0.05, -0.02],
+                    [[0.03, 0.002, 0.0], [0.002, 0.02, 0.001], [0.0, 0.001, 0.04]],
+                ),
+            )
+        };
+        ModelBuilder::new()
+            .gravity([0.0, 0.0, -9.81])
+            .body(body("base"))
+            .body(body("arm"))
+            .body(body("slider"))
+            .joint(JointSpec::free_flyer("float", "base"))
+            .joint(
+                JointSpec::revolute("hinge", "base", "arm", [0.0, 1.0, 0.0])
+                    .at([0.2, 0.0, 0.1])
+                    .with_armature(0.1),
+            )
+            .joint(
+                JointSpec::prismatic("slide", "arm", "slider", [1.0, 0.0, 0.0])
+                    .at([0.3, 0.0, 0.0])
+                    .with_damping(0.5),
+            )
+            .build()
+            .expect("valid model")
+    }
+
+    fn state() -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let q = vec![
+            0.1,
+            -0.2,
+            0.3,
+            0.2,
+            -0.1,
+            0.3,
+            0.9273618495495703,
+            0.7,
+            -0.2,
+        ];
+        let v = vec![0.5, -1.0, 0.2, 1.5, -0.3, 0.8, 2.0, -1.0];
+        let a = vec![1.0, 0.3, -0.5, 0.2, 0.9, -1.1, 0.4, 2.0];
+        (q, v, a)
+    }
+
+    #[test]
+    fn every_method_reports_wrong_lengths() {
+        let model = small_tree();
+        let mut r = Reference::<f64>::new(&model);
+        let (q, v, a) = state();
+        let (short_q, short_v) = (&q[1..], &v[1..]);
+        let mut out = vec![0.0; 8];
+        let mut short_out = vec![0.0; 7];
+        let mut m = DMatrix::zeros(8, 8);
+        let mut m_bad = DMatrix::zeros(8, 7);
+        let w = vec![Wrench::zero(); 3];
+        let mut w_out = vec![Wrench::zero(); 3];
+        let mut w_short = vec![Wrench::zero(); 2];
+        let err = |what, expected, got| SizeError {
+            what,
+            expected,
+            got,
+        };
+        let id = |r: &mut Reference<f64>, q: &[f64], v: &[f64], a: &[f64], f, o: &mut [f64]| {
+            r.inverse_dynamics(q, v, a, f, o)
+        };
+        assert_eq!(
+            id(&mut r, short_q, &v, &a, None, &mut out),
+            Err(err("q", 9, 8))
+        );
+        assert_eq!(
+            id(&mut r, &q, short_v, &a, None, &mut out),
+            Err(err("v", 8, 7))
+        );
+        assert_eq!(
+            id(&mut r, &q, &v, short_v, None, &mut out),
+            Err(err("a", 8, 7))
+        );
+        assert_eq!(
+            id(&mut r, &q, &v, &a, Some(&w[1..]), &mut out),
+            Err(err("external wrenches", 3, 2))
+        );
+        assert_eq!(
+            id(&mut r, &q, &v, &a, None, &mut short_out),
+            Err(err("tau", 8, 7))
+        );
+        assert!(r.gravity(short_q, &mut out).is_err());
+        assert!(r.gravity(&q, &mut short_out).is_err());
+        assert!(r.bias(&q, short_v, &mut out).is_err());
+        assert!(r.bias(&q, &v, &mut short_out).is_err());
+        assert!(r.nonlinear_effects(short_q, &v, &mut out).is_err());
+        assert!(r.nonlinear_effects(&q, &v, &mut short_out).is_err());
+        assert_eq!(
+            r.coriolis_matrix(&q, &v, &mut m_bad),
+            Err(err("coriolis matrix columns", 8, 7))
+        );
+        assert!(r.coriolis_matrix(&q, short_v, &mut m).is_err());
+        assert_eq!(
+            r.mass_matrix(&q, &mut m_bad),
+            Err(err("mass matrix columns", 8, 7))
+        );
+        assert!(r.mass_matrix(short_q, &mut m).is_err());
+        assert!(r.forward_dynamics(&q, &v, short_v, None, &mut out).is_err());
+        assert!(r
+            .forward_dynamics(&q, &v, &a, Some(&w[1..]), &mut out)
+            .is_err());
+        assert!(r
+            .forward_dynamics(&q, &v, &a, None, &mut short_out)
+            .is_err());
+        assert!(r.kinetic_energy(&q, short_v).is_err());
+        assert!(r.potential_energy(short_q).is_err());
+        assert!(r.joint_reactions(&q, &v, &a, None, &mut w_short).is_err());
+        assert!(r
+            .joint_reactions(&q, &v, short_v, Some(&w), &mut w_out)
+            .is_err());
+        assert!(r.body_poses(short_q).is_err());
+        // And the right lengths work.
+        assert!(r.joint_reactions(&q, &v, &a, Some(&w), &mut w_out).is_ok());
+    }
+
+    #[test]
+    fn single_precision_follows_double() {
+        let model = small_tree();
+        let (q, v, a) = state();
+        let to32 = |x: &[f64]| x.iter().map(|&y| y as f32).collect::<Vec<f32>>();
+        let mut r64 = Reference::<f64>::new(&model);
+        let mut r32 = Reference::<f32>::new(&model);
+        let mut tau64 = vec![0.0; 8];
+        let mut tau32 = vec![0.0f32; 8];
+        r64.inverse_dynamics(&q, &v, &a, None, &mut tau64)
+            .expect("sizes match");
+        r32.inverse_dynamics(&to32(&q), &to32(&v), &to32(&a), None, &mut tau32)
+            .expect("sizes match");
+        let mut qdd32 = vec![0.0f32; 8];
+        r32.forward_dynamics(&to32(&q), &to32(&v), &tau32, None, &mut qdd32)
+            .expect("sizes match");
+        for k in 0..8 {
+            assert!((tau64[k] - f64::from(tau32[k])).abs() < 1e-4 * (1.0 + tau64[k].abs()));
+            assert!((a[k] - f64::from(qdd32[k])).abs() < 1e-3 * (1.0 + a[k].abs()));
+        }
+    }
+
+    #[test]
+    fn spatial_algebra_identities() {
+        let v: Vector6<f64> = Vector6::new(0.3, -1.2, 0.5, 0.7, 0.1, -0.4);
+        let m: Vector6<f64> = Vector6::new(-0.2, 0.4, 1.1, -0.6, 0.9, 0.2);
+        let f: Vector6<f64> = Vector6::new(1.5, 0.2, -0.7, 0.3, -0.8, 0.6);
+        // v ×* = −(v ×)ᵀ, so (v × m) · f = −m · (v ×* f).
+        assert!((motion_cross(&v, &m).dot(&f) + m.dot(&force_cross(&v, &f))).abs() < 1e-15);
+        assert!((force_cross_matrix(&v) + motion_cross_matrix(&v).transpose()).amax() < 1e-15);
+        assert!((motion_cross_matrix(&v) * m - motion_cross(&v, &m)).amax() < 1e-15);
+        // The seed's coupled matrix is symmetric, and its motion transform preserves power:
+        // (X m) · (X⁻ᵀ f) = m · f with X⁻ᵀ = the force transform child → parent inverted.
+        let inertia = spatial_inertia(
+            2.0,
+            &Vector3::new(0.1, -0.2, 0.3),
+            &Matrix3::new(0.1, 0.01, 0.0, 0.01, 0.2, 0.02, 0.0, 0.02, 0.15),
+        );
+        assert_eq!(inertia, inertia.transpose());
+        let rotation = *nalgebra::Rotation3::from_euler_angles(0.3, -0.5, 1.1).matrix();
+        let x = motion_transform(&rotation, &Vector3::new(0.4, -0.1, 0.2));
+        let x_inv = x.try_inverse().expect("X is invertible");
+        assert!(((x * m).dot(&(x_inv.transpose() * f)) - m.dot(&f)).abs() < 1e-14);
+        // LDLᵀ solve of a symmetric positive-definite system.
+        let b = Vector6::new(1.0, 2.0, 3.0, -1.0, 0.5, 0.25);
+        assert!((inertia * solve_spd6(&inertia, &b) - b).amax() < 1e-12);
+    }
+}
