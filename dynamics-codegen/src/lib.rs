@@ -10,6 +10,7 @@
 
 pub mod declare;
 pub mod emit;
+pub mod expand;
 pub mod model;
 pub mod sym;
 pub mod syntax;
@@ -39,7 +40,22 @@ pub fn expand_mechanism(input: TokenStream) -> TokenStream {
         Ok(model)
     });
     match lowered {
-        Ok(model) => declare::declare(&model, &runtime_path()),
+        Ok(model) => {
+            let runtime = runtime_path();
+            let scalar: syn::Path = syn::parse_quote!(::dynamics_runtime::Scalar);
+            let name = &model.name;
+            let functions = expand::expand(&model, scalar)
+                .iter()
+                .map(|f| emit::emit_function(&f.graph, &f.spec))
+                .collect::<Vec<_>>();
+            let declaration = declare::declare(&model, &runtime);
+            quote! {
+                #declaration
+                impl #name {
+                    #(#functions)*
+                }
+            }
+        }
         Err(e) => {
             let errors = e.to_compile_error();
             let (vis, name) = (&mechanism.visibility, &mechanism.name);

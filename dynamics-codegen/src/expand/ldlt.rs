@@ -1,0 +1,67 @@
+//! Forward dynamics by a tree-sparse LDLᵀ factorization of M (Featherstone, *Rigid Body
+//! Dynamics Algorithms*, §6.5): M = Lᵀ D L with L unit lower triangular and nonzero only
+//! where the row's coordinate descends from the column's, so the factorization and the
+//! solves cost nothing between branches of the tree.
+//!
+//! ```text
+//! for k = n−1 … 0:  for i = λ(k), λ(λ(k)), …:  a = M_ki / M_kk
+//!                       for j = i, λ(i), …: M_ij −= a M_kj
+//!                       M_ki = a
+//! solve Lᵀ z = y, z ← D⁻¹ z, solve L x = z.
+//! ```
+//!
+//! λ(k) is the coordinate k descends from: the previous coordinate of the same free joint,
+//! or the last coordinate of the parent body's joint. Each pivot is inverted once.
+
+use super::rnea::joint_dofs;
+use crate::model::Model;
+use crate::sym::{Graph, Node};
+
+/// The parent coordinate of every velocity coordinate (`None` for the first coordinate of a
+/// body attached to the ground).
+pub fn coordinate_parents(model: &Model) -> Vec<Option<usize>> {
+    let mut parents = vec![None; model.nv];
+    for body in &model.bodies {
+        let first = body.joint.idx_v;
+        parents[first] = body.parent.map(|p| {
+            let pj = &model.bodies[p].joint;
+            pj.idx_v + joint_dofs(&pj.kind) - 1
+        });
+        for k in first + 1..first + joint_dofs(&body.joint.kind) {
+            parents[k] = Some(k - 1);
+        }
+    }
+    parents
+}
+
+/// Solves M x = y by the tree-sparse LDLᵀ factorization of M (consumes M).
+pub fn solve(g: &Graph, model: &Model, mut m: Vec<Vec<Node>>, mut y: Vec<Node>) -> Vec<Node> {
+    let parents = coordinate_parents(model);
+    let ancestors = |k: usize| std::iter::successors(parents[k], |&i| parents[i]);
+    let n = model.nv;
+    let mut inverse_pivot = vec![g.zero(); n];
+    for k in (0..n).rev() {
+        inverse_pivot[k] = g.div(g.one(), m[k][k]);
+        for i in ancestors(k) {
+            let a = g.mul(m[k][i], inverse_pivot[k]);
+            for j in std::iter::once(i).chain(ancestors(i)) {
+                m[i][j] = g.sub(m[i][j], g.mul(a, m[k][j]));
+            }
+            m[k][i] = a;
+        }
+    }
+    for i in (0..n).rev() {
+        for j in ancestors(i) {
+            y[j] = g.sub(y[j], g.mul(m[i][j], y[i]));
+        }
+    }
+    for i in 0..n {
+        y[i] = g.mul(y[i], inverse_pivot[i]);
+    }
+    for i in 0..n {
+        for j in ancestors(i) {
+            y[i] = g.sub(y[i], g.mul(m[i][j], y[j]));
+        }
+    }
+    y
+}
