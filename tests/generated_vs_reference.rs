@@ -86,6 +86,11 @@ macro_rules! all_outputs_match {
                 let m_ref_rows: Vec<f64> = (0..NV).flat_map(|i| (0..NV).map(move |j| (i, j))).map(|(i, j)| m_ref[(i, j)]).collect();
                 assert_close("mass_matrix", name, &flatten(&m_gen), &m_ref_rows, 1e-12);
 
+                let mut c_ref = DMatrix::zeros(NV, NV);
+                reference.coriolis_matrix(&q, &v, &mut c_ref).expect("sizes");
+                let c_ref_rows: Vec<f64> = (0..NV).flat_map(|i| (0..NV).map(move |j| (i, j))).map(|(i, j)| c_ref[(i, j)]).collect();
+                assert_close("coriolis_matrix", name, &flatten(&<$m>::coriolis_matrix(&q, &v)), &c_ref_rows, 1e-12);
+
                 reference.forward_dynamics(&q, &v, &tau, None, &mut out).expect("sizes");
                 let cond = condition_number(&m_ref);
                 assert_close("forward_dynamics", name, &<$m>::forward_dynamics(&q, &v, &tau), &out, 1e-12 * cond);

@@ -9,12 +9,14 @@
 //! | `gravity(q)` | g(q) | [`rnea`] with q̇ = q̈ = 0 |
 //! | `bias(q, v)` | C q̇ + g + b q̇ | [`rnea`] with q̈ = 0 |
 //! | `mass_matrix(q)` | M(q) (armature on the diagonal) | [`crba`] |
+//! | `coriolis_matrix(q, v)` | C(q, q̇) with Ṁ − 2C skew-symmetric | [`coriolis`] |
 //! | `forward_dynamics(q, v, tau)` | q̈ = M⁻¹(τ + Q − C q̇ − g − b q̇) | [`crba`] + [`ldlt`] |
 //! | `kinetic_energy(q, v)`, `potential_energy(q)` | T, V | [`energy`] |
 //! | `joint_reactions(q, v, a)` | [F; M_P] each joint transmits to its body | [`rnea`] |
 //!
 //! Symbolic parameters add a `p` argument, declared loads a `loads` argument (Q).
 
+pub mod coriolis;
 pub mod crba;
 pub mod energy;
 pub mod geometry;
@@ -174,6 +176,22 @@ pub fn expand(model: &Model, scalar_trait: syn::Path) -> Vec<Function> {
             "Mass matrix M(q) (symmetric, armature on the diagonal), by composite rigid bodies."
                 .to_owned();
         functions.push(sig.function(g, "mass_matrix", doc, &[Array::Q], Output::Matrix(m)));
+    }
+    if outputs.coriolis && nv > 0 {
+        let (g, t, i) = setup();
+        let v = inputs(&g, Array::V, nv);
+        let c = coriolis::coriolis_matrix(&g, model, &t, &i, &v);
+        let doc =
+            "Coriolis matrix C(q, q̇), the Christoffel-consistent one: C q̇ is the Coriolis and \
+                   centrifugal force and Ṁ − 2C is skew-symmetric."
+                .to_owned();
+        functions.push(sig.function(
+            g,
+            "coriolis_matrix",
+            doc,
+            &[Array::Q, Array::V],
+            Output::Matrix(c),
+        ));
     }
     if outputs.forward_dynamics && nv > 0 {
         let (g, t, i) = setup();
