@@ -1,0 +1,11 @@
+// A body named `ground`, the name of the fixed world frame.
+use dynamics_runtime::mechanism;
+
+mechanism! {
+    pub struct Pendulum;
+    body ground { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+    body bob { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+    joint pivot: revolute(ground -> bob) { axis: z }
+}
+
+fn main() {}

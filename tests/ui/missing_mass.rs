@@ -1,0 +1,10 @@
+// A body without a mass.
+use dynamics_runtime::mechanism;
+
+mechanism! {
+    pub struct Pendulum;
+    body bob { com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+    joint pivot: revolute(ground -> bob) { axis: z }
+}
+
+fn main() {}

@@ -1,0 +1,10 @@
+// A number that evaluates to infinity.
+use dynamics_runtime::mechanism;
+
+mechanism! {
+    pub struct Pendulum;
+    body bob { mass: 1.0 / 0.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+    joint pivot: revolute(ground -> bob) { axis: z }
+}
+
+fn main() {}

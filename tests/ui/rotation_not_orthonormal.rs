@@ -1,0 +1,13 @@
+// A placement rotation that stretches: RᵀR ≠ 1.
+use dynamics_runtime::mechanism;
+
+mechanism! {
+    pub struct Pendulum;
+    body bob { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+    joint pivot: revolute(ground -> bob) {
+        axis: z,
+        rotation: [[1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 1.0]],
+    }
+}
+
+fn main() {}

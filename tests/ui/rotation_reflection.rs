@@ -1,0 +1,13 @@
+// An orthonormal placement with determinant −1: a mirror, not a rotation.
+use dynamics_runtime::mechanism;
+
+mechanism! {
+    pub struct Pendulum;
+    body bob { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+    joint pivot: revolute(ground -> bob) {
+        axis: z,
+        rotation: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]],
+    }
+}
+
+fn main() {}

@@ -1,0 +1,10 @@
+// A revolute axis of zero length.
+use dynamics_runtime::mechanism;
+
+mechanism! {
+    pub struct Pendulum;
+    body bob { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+    joint pivot: revolute(ground -> bob) { axis: [0.0, 0.0, 0.0] }
+}
+
+fn main() {}
