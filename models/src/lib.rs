@@ -2,5 +2,6 @@
 //! models (pendulums, a planar chain, UR5, Panda).
 
 pub mod anchors;
+pub mod puma560;
 pub mod seed;
 pub mod urdf_anchors;

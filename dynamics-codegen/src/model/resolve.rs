@@ -228,8 +228,21 @@ impl Resolver<'_> {
 
 const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
+/// Rows of a rotation computed from angles, with entries within 1e-15 of 0 or ±1 made
+/// exact: `rpy(pi / 2, 0, 0)` means a quarter turn, whose cosine is 0, not 6e-17, and the
+/// exact zeros let the expansion fold the terms they multiply. Matrices given by their
+/// entries are kept as written.
 fn rows(m: &nalgebra::Matrix3<f64>) -> [[f64; 3]; 3] {
-    std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
+    let snap = |x: f64| {
+        if x.abs() < 1e-15 {
+            0.0
+        } else if (x.abs() - 1.0).abs() < 1e-15 {
+            x.signum()
+        } else {
+            x
+        }
+    };
+    std::array::from_fn(|i| std::array::from_fn(|j| snap(m[(i, j)])))
 }
 
 /// Resolves every number, form and name list of the declaration.

@@ -180,3 +180,19 @@ fn no_degree_of_freedom() {
     .join("\n");
     assert!(e.contains("no degree of freedom"), "{e}");
 }
+
+#[test]
+fn quarter_turns_are_exact() {
+    let m = lower_tokens(quote! {
+        struct S;
+        body a { mass: 1.0, com: [0.1, 0.0, 0.0], shape: point }
+        joint j: revolute(ground -> a) { axis: z, rotation: rpy(-pi / 2.0, 0.0, pi / 2.0) }
+    })
+    .expect("valid");
+    let r = m.bodies[0].joint.rotation_in_parent;
+    assert!(
+        r.iter().flatten().all(|x| [0.0, 1.0, -1.0].contains(x)),
+        "{r:?}"
+    );
+    assert_eq!(r, [[0.0, 0.0, -1.0], [1.0, 0.0, 0.0], [0.0, -1.0, 0.0]]);
+}
