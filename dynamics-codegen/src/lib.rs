@@ -5,8 +5,9 @@
 //!   -> sym (optimized DAG) -> emit (straight-line Rust)
 //! ```
 //!
-//! [`expand_mechanism`] runs the whole pipeline; each stage is a module usable on its own
-//! (from the macro, a `build.rs` or a CLI).
+//! [`compile`] runs the pipeline up to the expression graphs, [`to_tokens`] emits them, and
+//! [`expand_mechanism`] is the whole thing as the `mechanism!` macro uses it. Each stage is
+//! a module usable on its own (from the macro, a `build.rs` or the CLI).
 
 pub mod declare;
 pub mod emit;
@@ -18,47 +19,64 @@ pub mod urdf;
 
 use proc_macro2::TokenStream;
 use quote::quote;
+use std::path::Path;
 
 /// The path under which generated code finds the runtime crate.
 pub fn runtime_path() -> TokenStream {
     quote!(::dynamics_runtime)
 }
 
+/// A compiled mechanism: the validated model and one expression graph per function.
+pub struct Compiled {
+    /// The validated model.
+    pub model: model::Model,
+    /// The generated functions, in a fixed order.
+    pub functions: Vec<expand::Function>,
+}
+
+/// Imports the URDF file (if any, relative to `manifest_dir`), validates the mechanism and
+/// expands its requested functions.
+pub fn compile(mut mechanism: syntax::Mechanism, manifest_dir: &Path) -> syn::Result<Compiled> {
+    let source = urdf::import(&mut mechanism, manifest_dir)?;
+    let mut model = model::lower(&mechanism)?;
+    model
+        .source_files
+        .extend(source.map(|p| p.display().to_string()));
+    let scalar: syn::Path = syn::parse_quote!(::dynamics_runtime::Scalar);
+    let functions = expand::expand(&model, scalar);
+    Ok(Compiled { model, functions })
+}
+
+/// The Rust items of a compiled mechanism: its type, its `Mechanism` implementation and its
+/// dynamics functions as inherent associated functions.
+pub fn to_tokens(compiled: &Compiled) -> TokenStream {
+    let name = &compiled.model.name;
+    let functions = compiled
+        .functions
+        .iter()
+        .map(|f| emit::emit_function(&f.graph, &f.spec));
+    let declaration = declare::declare(&compiled.model, &runtime_path());
+    quote! {
+        #declaration
+        impl #name {
+            #(#functions)*
+        }
+    }
+}
+
 /// Runs the pipeline on the tokens of a `mechanism!` invocation. On error, returns the
 /// errors as `compile_error!`s, each at its span, plus a stub of the declared type so that
 /// the user sees the real errors rather than a cascade of "type not found".
 pub fn expand_mechanism(input: TokenStream) -> TokenStream {
-    let mut mechanism: syntax::Mechanism = match syn::parse2(input) {
+    let mechanism: syntax::Mechanism = match syn::parse2(input) {
         Ok(m) => m,
         Err(e) => return e.to_compile_error(),
     };
-    let lowered = urdf::import(&mut mechanism, &urdf::manifest_dir()).and_then(|source| {
-        let mut model = model::lower(&mechanism)?;
-        model
-            .source_files
-            .extend(source.map(|p| p.display().to_string()));
-        Ok(model)
-    });
-    match lowered {
-        Ok(model) => {
-            let runtime = runtime_path();
-            let scalar: syn::Path = syn::parse_quote!(::dynamics_runtime::Scalar);
-            let name = &model.name;
-            let functions = expand::expand(&model, scalar)
-                .iter()
-                .map(|f| emit::emit_function(&f.graph, &f.spec))
-                .collect::<Vec<_>>();
-            let declaration = declare::declare(&model, &runtime);
-            quote! {
-                #declaration
-                impl #name {
-                    #(#functions)*
-                }
-            }
-        }
+    let (vis, name) = (mechanism.visibility.clone(), mechanism.name.clone());
+    match compile(mechanism, &urdf::manifest_dir()) {
+        Ok(compiled) => to_tokens(&compiled),
         Err(e) => {
             let errors = e.to_compile_error();
-            let (vis, name) = (&mechanism.visibility, &mechanism.name);
             quote! {
                 #errors
                 #vis struct #name;

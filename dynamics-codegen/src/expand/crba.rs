@@ -47,13 +47,17 @@ fn to_parent(g: &Graph, t: &JointTransform, inertia: &BodyInertia) -> BodyInerti
     let h_rotated = e.mul_vec(g, inertia.first_moment);
     let r_hat = r.cross_matrix(g);
     let h_hat = h_rotated.cross_matrix(g);
-    let rotated = e.mul(g, inertia.inertia_about_origin).mul(g, e.transpose());
-    let cross_terms = h_hat.mul(g, r_hat).add(g, r_hat.mul(g, h_hat));
-    let shift = r_hat.mul(g, r_hat).scale(g, inertia.mass);
+    let rotated = super::aba::congruence(g, e, inertia.inertia_about_origin);
+    // ĥ r̂ + r̂ ĥ and m r̂² are symmetric: one triangle computed, mirrored.
+    let h_r = h_hat.mul(g, r_hat);
+    let cross_terms = super::aba::symmetric(|i, j| g.add(h_r.get(i, j), h_r.get(j, i)));
+    let r_r = super::aba::symmetric(|i, j| r_hat.row(i).dot(g, r_hat.col(j)));
+    let shift = r_r.scale(g, inertia.mass);
     BodyInertia {
         mass: inertia.mass,
         first_moment: h_rotated.add(g, r.scale(g, inertia.mass)),
         inertia_about_origin: rotated.sub(g, cross_terms).sub(g, shift),
+        mass_centre: None,
     }
 }
 

@@ -23,6 +23,9 @@ pub struct BodyInertia {
     pub first_moment: Vec3,
     /// Rotational inertia about P: I_P = I_G − m ĉ².
     pub inertia_about_origin: Mat3,
+    /// The mass centre c and I_G about it, when the mass is a nonzero constant (so c needs
+    /// no division at run time).
+    pub mass_centre: Option<(Vec3, Mat3)>,
 }
 
 /// The pose of a body's frame in its parent's frame, as functions of q.
@@ -58,12 +61,15 @@ pub fn matrix(g: &Graph, m: &model::Mat3) -> Mat3 {
     Mat3::from_rows([vector(g, &m[0]), vector(g, &m[1]), vector(g, &m[2])])
 }
 
-/// m, h = m c and I_P = I_G − m ĉ² of a composite body: the sum over its parts.
+/// m, h = m c and I_P = I_G − m ĉ² of a composite body: the sum over its parts; and, when
+/// the mass is a nonzero constant, the composite mass centre c = h / m and I_G about it,
+/// I_G = Σ_k (I_G,k − m_k (c_k − c)^²) (a single part keeps its declared c and I_G exactly).
 pub fn body_inertia(g: &Graph, body: &model::Body) -> BodyInertia {
     let mut total = BodyInertia {
         mass: g.zero(),
         first_moment: Vec3::zero(g),
         inertia_about_origin: Mat3::zero(g),
+        mass_centre: None,
     };
     for part in &body.parts {
         let m = value(g, &part.mass);
@@ -75,6 +81,25 @@ pub fn body_inertia(g: &Graph, body: &model::Body) -> BodyInertia {
         total.first_moment = total.first_moment.add(g, c.scale(g, m));
         total.inertia_about_origin = total.inertia_about_origin.add(g, i_p);
     }
+    total.mass_centre = match body.parts.as_slice() {
+        [part] if part.mass.is_constant() && part.mass.constant > 0.0 => Some((
+            vector(g, &part.com_in_body),
+            matrix(g, &part.inertia_com_in_body),
+        )),
+        _ => match g.constant_value(total.mass) {
+            Some(m) if m > 0.0 => {
+                let c = total.first_moment.scale(g, g.constant(1.0 / m));
+                let mut i_g = Mat3::zero(g);
+                for part in &body.parts {
+                    let d_hat = vector(g, &part.com_in_body).sub(g, c).cross_matrix(g);
+                    let shift = d_hat.mul(g, d_hat).scale(g, value(g, &part.mass));
+                    i_g = i_g.add(g, matrix(g, &part.inertia_com_in_body).sub(g, shift));
+                }
+                Some((c, i_g))
+            }
+            _ => None,
+        },
+    };
     total
 }
 

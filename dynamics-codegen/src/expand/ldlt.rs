@@ -35,10 +35,27 @@ pub fn coordinate_parents(model: &Model) -> Vec<Option<usize>> {
 }
 
 /// Solves M x = y by the tree-sparse LDLᵀ factorization of M (consumes M).
-pub fn solve(g: &Graph, model: &Model, mut m: Vec<Vec<Node>>, mut y: Vec<Node>) -> Vec<Node> {
-    let parents = coordinate_parents(model);
+pub fn solve(g: &Graph, model: &Model, m: Vec<Vec<Node>>, y: Vec<Node>) -> Vec<Node> {
+    solve_with_parents(g, &coordinate_parents(model), m, y)
+}
+
+/// Solves a dense symmetric system M x = y (a chain: every coordinate descends from the
+/// previous one), as the articulated-body algorithm needs for a multi-dof joint.
+pub fn solve_dense(g: &Graph, m: Vec<Vec<Node>>, y: Vec<Node>) -> Vec<Node> {
+    let parents: Vec<Option<usize>> = (0..y.len()).map(|k| k.checked_sub(1)).collect();
+    solve_with_parents(g, &parents, m, y)
+}
+
+/// Solves M x = y where M is nonzero only between a coordinate and its ancestors in
+/// `parents`.
+fn solve_with_parents(
+    g: &Graph,
+    parents: &[Option<usize>],
+    mut m: Vec<Vec<Node>>,
+    mut y: Vec<Node>,
+) -> Vec<Node> {
     let ancestors = |k: usize| std::iter::successors(parents[k], |&i| parents[i]);
-    let n = model.nv;
+    let n = y.len();
     let mut inverse_pivot = vec![g.zero(); n];
     for k in (0..n).rev() {
         inverse_pivot[k] = g.div(g.one(), m[k][k]);

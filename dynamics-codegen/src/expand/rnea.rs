@@ -6,24 +6,30 @@
 //!
 //! ```text
 //! revolute:   ω_i = Eᵀω_λ + s q̇        α_i = Eᵀα_λ + s q̈ + (Eᵀω_λ) × s q̇
-//!             a_i = Eᵀ(a_λ + α_λ × r + ω_λ × (ω_λ × r))
+//!             a_i = Eᵀ(a_λ + U_λ r)
 //! prismatic:  ω_i = Eᵀω_λ   α_i = Eᵀα_λ
-//!             a_i = Eᵀ(a_λ + α_λ × r + ω_λ × (ω_λ × r)) + 2 ω_i × s q̇ + s q̈
+//!             a_i = Eᵀ(a_λ + U_λ r) + 2 ω_i × s q̇ + s q̈
 //! free:       ω = v_ang, α = a_ang, a_P = a_lin + ω × v_lin + Eᵀ a_0
 //! ```
 //!
-//! Body equation (the seed's coupled six-dimensional equation, h = m c, c = PG,
+//! where U = α̂ + ω̂² is the matrix with U x = α × x + ω × (ω × x), the acceleration of a
+//! body-fixed point at x relative to P. It is built once per body from the six products
+//! ω_i ω_j and serves twice: to carry the acceleration to the children and in the body
+//! equation. Body equation (the seed's coupled six-dimensional equation, h = m c, c = PG,
 //! I_P = I_G − m ĉ²):
 //!
 //! ```text
-//! F   = m a_P − m ĉ α + m ω̂² c  = m a_P + α × h + ω × (ω × h)
+//! F   = m a_P − m ĉ α + m ω̂² c     = m a_P + U h
 //! M_P = m ĉ a_P + I_P α + ω × I_P ω = h × a_P + I_P α + ω × (I_P ω)
 //! ```
 //!
-//! minus the applied loads on the body. Backward sweep: the wrench the joint transmits,
-//! f_i = (F, M_P)_i + Σ_children (E_c F_c, E_c M_c + r_c × E_c F_c), and τ_i = s_iᵀ f_i
-//! (the moment for a revolute joint, the force for a prismatic one, the whole wrench for a
-//! free joint), plus armature · q̈ and damping · q̇.
+//! with ω × (I_P ω) in the Euler form of the seed (e.g. its first component
+//! (I_33 − I_22) ω_2 ω_3 + I_23 (ω_2² − ω_3²) + I_13 ω_1 ω_2 − I_12 ω_1 ω_3), whose constant
+//! differences fold at compile time. The applied loads on the body are subtracted. Backward
+//! sweep: the wrench the joint transmits, f_i = (F, M_P)_i + Σ_children
+//! (E_c F_c, E_c M_c + r_c × E_c F_c), and τ_i = s_iᵀ f_i (the moment for a revolute joint,
+//! the force for a prismatic one, the whole wrench for a free joint), plus armature · q̈ and
+//! damping · q̇.
 
 use super::geometry::{self, BodyInertia, JointTransform};
 use crate::model::{JointKind, LoadKind, Model};
@@ -38,6 +44,53 @@ pub struct BodyMotion {
     pub alpha: Vec3,
     /// Acceleration of the origin P (gravity included as −g at the base).
     pub accel: Vec3,
+    /// U = α̂ + ω̂²: U x is the acceleration of the body point at x relative to P.
+    pub relative_accel: Mat3,
+    /// The products ω_i ω_j.
+    pub omega_products: [[Node; 3]; 3],
+}
+
+impl BodyMotion {
+    /// Completes a motion from ω, α and a_P: the products ω_i ω_j and U = α̂ + ω̂².
+    pub fn new(g: &Graph, omega: Vec3, alpha: Vec3, accel: Vec3) -> Self {
+        let w = |i: usize| omega.get(i);
+        let p: [[Node; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| g.mul(w(i), w(j))));
+        let a = |i: usize| alpha.get(i);
+        // ω̂² = ω ωᵀ − |ω|² 1; α̂ is skew.
+        let diagonal = |i: usize| {
+            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+            g.neg(g.add(p[j][j], p[k][k]))
+        };
+        let u = Mat3::from_rows([
+            Vec3::new(diagonal(0), g.sub(p[0][1], a(2)), g.add(p[0][2], a(1))),
+            Vec3::new(g.add(p[0][1], a(2)), diagonal(1), g.sub(p[1][2], a(0))),
+            Vec3::new(g.sub(p[0][2], a(1)), g.add(p[1][2], a(0)), diagonal(2)),
+        ]);
+        BodyMotion {
+            omega,
+            alpha,
+            accel,
+            relative_accel: u,
+            omega_products: p,
+        }
+    }
+}
+
+/// ω × (I ω) for a symmetric I, in the Euler form: component i is
+/// (I_kk − I_jj) ω_j ω_k + I_jk (ω_j² − ω_k²) + I_ik ω_i ω_j − I_ij ω_i ω_k for (i, j, k) a
+/// cyclic permutation, so that a diagonal I costs one product per component.
+pub fn gyroscopic(g: &Graph, inertia: &Mat3, p: &[[Node; 3]; 3]) -> Vec3 {
+    let component = |i: usize| {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let i_ = |r: usize, c: usize| inertia.get(r, c);
+        g.sum(&[
+            g.mul(g.sub(i_(k, k), i_(j, j)), p[j][k]),
+            g.mul(i_(j, k), g.sub(p[j][j], p[k][k])),
+            g.mul(i_(i, k), p[i][j]),
+            g.neg(g.mul(i_(i, j), p[i][k])),
+        ])
+    };
+    Vec3::new(component(0), component(1), component(2))
 }
 
 /// What a sweep computes: the joint forces and the wrench each joint transmits.
@@ -74,11 +127,7 @@ pub fn sweep(
     } else {
         Vec3::zero(g)
     };
-    let base = BodyMotion {
-        omega: Vec3::zero(g),
-        alpha: Vec3::zero(g),
-        accel: base_accel,
-    };
+    let base = BodyMotion::new(g, Vec3::zero(g), Vec3::zero(g), base_accel);
     let mut motions: Vec<BodyMotion> = Vec::with_capacity(model.bodies.len());
     for (i, body) in model.bodies.iter().enumerate() {
         let parent = body.parent.map_or(base, |p| motions[p]);
@@ -89,8 +138,11 @@ pub fn sweep(
         .zip(inertias)
         .map(|(motion, inertia)| body_wrench(g, motion, inertia))
         .collect();
-    if inputs.loads {
-        subtract_loads(g, model, &mut wrenches);
+    for (w, (f, m)) in wrenches
+        .iter_mut()
+        .zip(load_wrenches(g, model, inputs.loads))
+    {
+        *w = (w.0.sub(g, f), w.1.sub(g, m));
     }
     for i in (0..model.bodies.len()).rev() {
         if let Some(p) = model.bodies[i].parent {
@@ -154,72 +206,122 @@ fn forward(
     let r = t.origin_in_parent;
     let omega_in = geometry::to_body(g, t, parent.omega);
     let alpha_in = geometry::to_body(g, t, parent.alpha);
-    let transported = parent
-        .accel
-        .add(g, parent.alpha.cross(g, r))
-        .add(g, parent.omega.cross(g, parent.omega.cross(g, r)));
+    let transported = parent.accel.add(g, parent.relative_accel.mul_vec(g, r));
     let accel_in = geometry::to_body(g, t, transported);
     match joint.kind {
         JointKind::Revolute { axis_in_joint } => {
             let s = Vec3::constant(g, axis_in_joint);
             let spin = s.scale(g, qd(0));
-            BodyMotion {
-                omega: omega_in.add(g, spin),
-                alpha: alpha_in
-                    .add(g, s.scale(g, qdd(0)))
-                    .add(g, omega_in.cross(g, spin)),
-                accel: accel_in,
-            }
+            let omega = omega_in.add(g, spin);
+            let alpha = alpha_in
+                .add(g, s.scale(g, qdd(0)))
+                .add(g, omega_in.cross(g, spin));
+            BodyMotion::new(g, omega, alpha, accel_in)
         }
         JointKind::Prismatic { axis_in_joint } => {
             let s = Vec3::constant(g, axis_in_joint);
             let slide = s.scale(g, qd(0));
             let two = g.constant(2.0);
-            BodyMotion {
-                omega: omega_in,
-                alpha: alpha_in,
-                accel: accel_in
-                    .add(g, omega_in.cross(g, slide).scale(g, two))
-                    .add(g, s.scale(g, qdd(0))),
-            }
+            let accel = accel_in
+                .add(g, omega_in.cross(g, slide).scale(g, two))
+                .add(g, s.scale(g, qdd(0)));
+            BodyMotion::new(g, omega_in, alpha_in, accel)
         }
         JointKind::Free => {
             let v_lin = Vec3::new(qd(0), qd(1), qd(2));
             let omega = omega_in.add(g, Vec3::new(qd(3), qd(4), qd(5)));
-            BodyMotion {
-                omega,
-                alpha: alpha_in.add(g, Vec3::new(qdd(3), qdd(4), qdd(5))),
-                accel: accel_in
-                    .add(g, Vec3::new(qdd(0), qdd(1), qdd(2)))
-                    .add(g, omega.cross(g, v_lin)),
-            }
+            let alpha = alpha_in.add(g, Vec3::new(qdd(3), qdd(4), qdd(5)));
+            let accel = accel_in
+                .add(g, Vec3::new(qdd(0), qdd(1), qdd(2)))
+                .add(g, omega.cross(g, v_lin));
+            BodyMotion::new(g, omega, alpha, accel)
         }
     }
 }
 
 /// The seed's body equation about P: the wrench that produces the body's motion.
+///
+/// F is always the shifted form F = m a_P + U h. The moment M_P = h × a_P + I_P α + ω × I_P ω
+/// equals c × F + I_G α + ω × I_G ω (the seed's M_P = M_G + c × F, from which the shifted
+/// form is derived); when the body's inertia is constant, the grouping that costs fewer
+/// operations is used (I_G is often diagonal where I_P is not).
 pub fn body_wrench(g: &Graph, motion: &BodyMotion, inertia: &BodyInertia) -> (Vec3, Vec3) {
-    let BodyMotion {
-        omega,
-        alpha,
-        accel,
-    } = *motion;
     let h = inertia.first_moment;
     let i_p: Mat3 = inertia.inertia_about_origin;
-    let force = accel
+    let force = motion
+        .accel
         .scale(g, inertia.mass)
-        .add(g, alpha.cross(g, h))
-        .add(g, omega.cross(g, omega.cross(g, h)));
-    let moment = h
-        .cross(g, accel)
-        .add(g, i_p.mul_vec(g, alpha))
-        .add(g, omega.cross(g, i_p.mul_vec(g, omega)));
+        .add(g, motion.relative_accel.mul_vec(g, h));
+    let about_centre = inertia
+        .mass_centre
+        .filter(|(c, i_g)| centre_grouping_is_cheaper(g, h, i_p, *c, *i_g));
+    let moment = match about_centre {
+        Some((c, i_g)) => c
+            .cross(g, force)
+            .add(g, i_g.mul_vec(g, motion.alpha))
+            .add(g, gyroscopic(g, &i_g, &motion.omega_products)),
+        None => h
+            .cross(g, motion.accel)
+            .add(g, i_p.mul_vec(g, motion.alpha))
+            .add(g, gyroscopic(g, &i_p, &motion.omega_products)),
+    };
     (force, moment)
 }
 
-/// Subtracts each declared load (force f through point r_l, couple n, both given in the
-/// loaded body's declared frame) from its body's wrench: F −= f, M_P −= r_l × f + n.
-fn subtract_loads(g: &Graph, model: &Model, wrenches: &mut [(Vec3, Vec3)]) {
+/// Whether c × F + I_G α + ω × I_G ω costs fewer operations than h × a_P + I_P α +
+/// ω × I_P ω for these constant inertias: both are built on a scratch graph whose inputs
+/// stand for a_P, F, α and the products ω_i ω_j, and their op counts compared.
+fn centre_grouping_is_cheaper(g: &Graph, h: Vec3, i_p: Mat3, c: Vec3, i_g: Mat3) -> bool {
+    let constants = |v: Vec<Node>| {
+        v.iter()
+            .map(|&n| g.constant_value(n))
+            .collect::<Option<Vec<f64>>>()
+    };
+    let (Some(h), Some(i_p), Some(c), Some(i_g)) = (
+        constants(h.0.to_vec()),
+        constants(i_p.0.iter().flatten().copied().collect()),
+        constants(c.0.to_vec()),
+        constants(i_g.0.iter().flatten().copied().collect()),
+    ) else {
+        return false;
+    };
+    let cost = |first: &[f64], linear: &[f64], use_force: bool| {
+        let s = Graph::new();
+        let input = |k: usize| s.input(Array::A, k);
+        let vector = |v: &[f64]| Vec3::constant(&s, [v[0], v[1], v[2]]);
+        let matrix = |m: &[f64]| {
+            Mat3::constant(
+                &s,
+                [[m[0], m[1], m[2]], [m[3], m[4], m[5]], [m[6], m[7], m[8]]],
+            )
+        };
+        let operand = if use_force {
+            Vec3::new(input(0), input(1), input(2))
+        } else {
+            Vec3::new(input(3), input(4), input(5))
+        };
+        let alpha = Vec3::new(input(6), input(7), input(8));
+        let p: [[Node; 3]; 3] =
+            std::array::from_fn(|i| std::array::from_fn(|j| input(9 + 3 * i.min(j) + i.max(j))));
+        let i_m = matrix(linear);
+        let m = vector(first)
+            .cross(&s, operand)
+            .add(&s, i_m.mul_vec(&s, alpha))
+            .add(&s, gyroscopic(&s, &i_m, &p));
+        let ops = s.op_count(&m.0);
+        ops.mul + ops.add
+    };
+    cost(&c, &i_g, true) < cost(&h, &i_p, false)
+}
+
+/// The applied loads as a wrench on each body, [F; M_P] in the body frame: a force f
+/// through point r_l and a couple n (given in the loaded body's declared frame) give
+/// F = f, M_P = r_l × f + n. Bodies without loads get zero.
+pub fn load_wrenches(g: &Graph, model: &Model, with_loads: bool) -> Vec<(Vec3, Vec3)> {
+    let mut wrenches = vec![(Vec3::zero(g), Vec3::zero(g)); model.bodies.len()];
+    if !with_loads {
+        return wrenches;
+    }
     for load in &model.loads {
         let input = |k: usize| {
             let raw = Vec3::new(
@@ -237,7 +339,8 @@ fn subtract_loads(g: &Graph, model: &Model, wrenches: &mut [(Vec3, Vec3)]) {
         let point = geometry::vector(g, &load.point_in_body);
         let moment = point.cross(g, force).add(g, couple);
         let (f, m) = &mut wrenches[load.body];
-        *f = f.sub(g, force);
-        *m = m.sub(g, moment);
+        *f = f.add(g, force);
+        *m = m.add(g, moment);
     }
+    wrenches
 }

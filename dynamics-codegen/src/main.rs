@@ -1,0 +1,158 @@
+//! `dynamics-codegen`: prints the Rust that `mechanism!` generates, pretty-printed, with the
+//! op count of every function.
+//!
+//! ```text
+//! dynamics-codegen <file.rs | file.urdf> [--only NAME] [--ops]
+//! ```
+//!
+//! A `.rs` file is searched for `mechanism! { ... }` invocations (URDF paths inside them are
+//! relative to the nearest folder with a `Cargo.toml`, as in the macro). A `.urdf` file is
+//! compiled as a fixed-base mechanism with gravity (0, 0, −9.81) and every output.
+//! `--only NAME` keeps one mechanism; `--ops` prints only the op-count table.
+
+use dynamics_codegen::{compile, syntax, to_tokens, Compiled};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+struct Options {
+    file: PathBuf,
+    only: Option<String>,
+    ops_only: bool,
+}
+
+fn parse_args() -> Result<Options, String> {
+    let mut args = std::env::args().skip(1);
+    let (mut file, mut only, mut ops_only) = (None, None, false);
+    while let Some(arg) = args.next() {
+        match arg.as_str() {
+            "--only" => only = Some(args.next().ok_or("--only needs a mechanism name")?),
+            "--ops" => ops_only = true,
+            "-h" | "--help" => return Err(String::new()),
+            _ if file.is_none() => file = Some(PathBuf::from(arg)),
+            _ => return Err(format!("unexpected argument `{arg}`")),
+        }
+    }
+    let file = file.ok_or("give a .rs file with mechanism! invocations, or a .urdf file")?;
+    Ok(Options {
+        file,
+        only,
+        ops_only,
+    })
+}
+
+/// The folder URDF paths are relative to: the nearest ancestor with a Cargo.toml.
+fn manifest_dir(file: &Path) -> PathBuf {
+    let start = file.parent().unwrap_or(Path::new("."));
+    start
+        .ancestors()
+        .find(|d| d.join("Cargo.toml").is_file())
+        .unwrap_or(start)
+        .to_path_buf()
+}
+
+fn mechanisms(file: &Path) -> Result<Vec<(syntax::Mechanism, PathBuf)>, String> {
+    let text = std::fs::read_to_string(file)
+        .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+    if file.extension().is_some_and(|e| e == "urdf") {
+        let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("robot");
+        let name: String = stem
+            .split(|c: char| !c.is_ascii_alphanumeric())
+            .filter(|w| !w.is_empty())
+            .map(|w| w[..1].to_ascii_uppercase() + &w[1..])
+            .collect();
+        let path = file
+            .file_name()
+            .and_then(|f| f.to_str())
+            .unwrap_or_default();
+        let tokens: proc_macro2::TokenStream = format!(
+            "pub struct {}; urdf: {:?}; gravity: [0.0, 0.0, -9.81];",
+            if name.is_empty() {
+                "Robot".to_owned()
+            } else {
+                name
+            },
+            path
+        )
+        .parse()
+        .map_err(|e| format!("{e}"))?;
+        let mechanism = syn::parse2(tokens).map_err(|e| e.to_string())?;
+        let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
+        return Ok(vec![(mechanism, dir)]);
+    }
+    let parsed = syn::parse_file(&text).map_err(|e| format!("{}: {e}", file.display()))?;
+    let dir = manifest_dir(file);
+    let mut found = Vec::new();
+    for item in parsed.items {
+        if let syn::Item::Macro(m) = item {
+            if m.mac
+                .path
+                .segments
+                .last()
+                .is_some_and(|s| s.ident == "mechanism")
+            {
+                let mechanism =
+                    syn::parse2(m.mac.tokens).map_err(|e| format!("{}: {e}", file.display()))?;
+                found.push((mechanism, dir.clone()));
+            }
+        }
+    }
+    Ok(found)
+}
+
+fn op_table(compiled: &Compiled) -> String {
+    let mut out = format!("{} ({} dof):\n", compiled.model.name, compiled.model.nv);
+    for f in &compiled.functions {
+        let nodes = f.spec.output.nodes();
+        let count = f.graph.op_count(&nodes);
+        out += &format!("  {:<20} {count}\n", f.spec.name.to_string());
+    }
+    out
+}
+
+fn run(options: &Options) -> Result<(), String> {
+    let mut any = false;
+    for (mechanism, dir) in mechanisms(&options.file)? {
+        if options.only.as_ref().is_some_and(|n| mechanism.name != n) {
+            continue;
+        }
+        any = true;
+        let compiled = compile(mechanism, &dir).map_err(|e| {
+            e.into_iter()
+                .map(|e| format!("error: {e}"))
+                .collect::<Vec<_>>()
+                .join("\n")
+        })?;
+        if options.ops_only {
+            print!("{}", op_table(&compiled));
+            continue;
+        }
+        let file: syn::File =
+            syn::parse2(to_tokens(&compiled)).map_err(|e| format!("internal: {e}"))?;
+        println!(
+            "// {}",
+            op_table(&compiled).trim_end().replace('\n', "\n// ")
+        );
+        println!("{}", prettyplease::unparse(&file));
+    }
+    if any {
+        Ok(())
+    } else {
+        Err(format!(
+            "no matching mechanism! in {}",
+            options.file.display()
+        ))
+    }
+}
+
+fn main() -> ExitCode {
+    match parse_args().and_then(|o| run(&o)) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            if !message.is_empty() {
+                eprintln!("dynamics-codegen: {message}");
+            }
+            eprintln!("usage: dynamics-codegen <file.rs | file.urdf> [--only NAME] [--ops]");
+            ExitCode::from(2)
+        }
+    }
+}
