@@ -203,3 +203,40 @@ fn eccentric_rotor_reactions() {
         );
     }
 }
+
+#[test]
+fn op_counts_are_exported_for_the_requested_functions_only() {
+    let names = |functions: &[dynamics_runtime::FunctionCost]| -> Vec<&str> {
+        functions.iter().map(|f| f.name).collect()
+    };
+    assert_eq!(
+        names(Ur5::FUNCTIONS),
+        [
+            "inverse_dynamics",
+            "gravity",
+            "bias",
+            "mass_matrix",
+            "coriolis_matrix",
+            "forward_dynamics",
+            "kinetic_energy",
+            "potential_energy",
+            "joint_reactions"
+        ]
+    );
+    // EccentricRotor asks for inverse dynamics, reactions, mass matrix and energy only.
+    assert_eq!(
+        names(EccentricRotor::FUNCTIONS),
+        [
+            "inverse_dynamics",
+            "mass_matrix",
+            "kinetic_energy",
+            "potential_energy",
+            "joint_reactions"
+        ]
+    );
+    let puma = models::puma560::Puma560::FUNCTIONS
+        .iter()
+        .find(|f| f.name == "inverse_dynamics")
+        .expect("generated");
+    assert!(puma.mul <= 224 && puma.div == 0, "{puma:?}");
+}

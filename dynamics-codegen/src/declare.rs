@@ -83,8 +83,16 @@ fn joint_tokens(rt: &TokenStream, j: &DeclaredJoint) -> TokenStream {
     }
 }
 
+/// The op counts of one generated function, for `Mechanism::FUNCTIONS`.
+pub struct Cost {
+    /// The function's name.
+    pub name: String,
+    /// Its operation counts.
+    pub ops: crate::sym::OpCount,
+}
+
 /// The mechanism's type and its `Mechanism` implementation.
-pub fn declare(model: &Model, rt: &TokenStream) -> TokenStream {
+pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
     let name = &model.name;
     let vis = &model.visibility;
     let name_str = name.to_string();
@@ -109,6 +117,11 @@ pub fn declare(model: &Model, rt: &TokenStream) -> TokenStream {
         )
     });
     let unused = (num_parameters == 0).then(|| quote!(let _ = parameters;));
+    let functions = costs.iter().map(|c| {
+        let (name, o) = (&c.name, &c.ops);
+        let (mul, add, div, sqrt, trig) = (o.mul, o.add, o.div, o.sqrt, o.trig);
+        quote!(#rt::FunctionCost { name: #name, mul: #mul, add: #add, div: #div, sqrt: #sqrt, trig: #trig })
+    });
     quote! {
         #(#[doc = #docs])*
         #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -126,6 +139,7 @@ pub fn declare(model: &Model, rt: &TokenStream) -> TokenStream {
             const NOMINAL_PARAMETERS: &'static [f64] = &[#(#nominal),*];
             const LOAD_NAMES: &'static [&'static str] = &[#(#load_names),*];
             const NUM_LOAD_INPUTS: usize = #num_load_inputs;
+            const FUNCTIONS: &'static [#rt::FunctionCost] = &[#(#functions),*];
 
             fn model() -> #rt::Model {
                 match <Self as #rt::Mechanism>::model_with_parameters(Self::NOMINAL_PARAMETERS) {

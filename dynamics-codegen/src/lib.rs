@@ -55,7 +55,15 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
         .functions
         .iter()
         .map(|f| emit::emit_function(&f.graph, &f.spec));
-    let declaration = declare::declare(&compiled.model, &runtime_path());
+    let costs: Vec<declare::Cost> = compiled
+        .functions
+        .iter()
+        .map(|f| declare::Cost {
+            name: f.spec.name.to_string(),
+            ops: f.graph.op_count(&f.spec.output.nodes()),
+        })
+        .collect();
+    let declaration = declare::declare(&compiled.model, &costs, &runtime_path());
     quote! {
         #declaration
         impl #name {

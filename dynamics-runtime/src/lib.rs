@@ -13,7 +13,7 @@ pub mod reference;
 pub mod scalar;
 
 pub use dynamics_macros::mechanism;
-pub use mechanism::Mechanism;
+pub use mechanism::{FunctionCost, Mechanism};
 pub use model::{
     BodySpec, Inertia, JointKind, JointSpec, JointType, Model, ModelBuilder, ModelError,
     ModelErrors, Placement, SizeError, GROUND,

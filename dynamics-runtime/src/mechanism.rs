@@ -7,6 +7,23 @@
 
 use crate::model::{Model, ModelErrors};
 
+/// What one generated function costs: its operation counts, as the macro counted them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FunctionCost {
+    /// The function's name (`inverse_dynamics`, `mass_matrix`, ...).
+    pub name: &'static str,
+    /// Multiplications.
+    pub mul: usize,
+    /// Additions and subtractions.
+    pub add: usize,
+    /// Divisions.
+    pub div: usize,
+    /// Square roots.
+    pub sqrt: usize,
+    /// Sines and cosines.
+    pub trig: usize,
+}
+
 /// A mechanism declared with `mechanism!`.
 pub trait Mechanism {
     /// The type's name.
@@ -28,6 +45,9 @@ pub trait Mechanism {
     const LOAD_NAMES: &'static [&'static str];
     /// Length of the loads input: 3 per force or couple, 6 per wrench.
     const NUM_LOAD_INPUTS: usize;
+
+    /// The generated functions and their operation counts.
+    const FUNCTIONS: &'static [FunctionCost];
 
     /// The runtime model with the parameters at their nominal values.
     ///
