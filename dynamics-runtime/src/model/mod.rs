@@ -18,6 +18,8 @@
 mod builder;
 mod error;
 mod rules;
+#[cfg(test)]
+mod tests;
 
 pub use builder::{BodySpec, JointSpec, JointType, ModelBuilder};
 pub use error::{ModelError, ModelErrors, SizeError};
