@@ -240,3 +240,29 @@ fn op_counts_are_exported_for_the_requested_functions_only() {
         .expect("generated");
     assert!(puma.mul <= 224 && puma.div == 0, "{puma:?}");
 }
+
+#[test]
+fn nalgebra_wrappers_match_the_array_functions() {
+    use nalgebra::{SMatrix, SVector};
+    let q = SVector::<f64, 6>::from([0.1, -0.4, 0.9, 1.3, -2.0, 0.3]);
+    let v = SVector::<f64, 6>::from([0.5, 0.2, -0.1, 0.7, -0.3, 1.1]);
+    let a = SVector::<f64, 6>::from([-1.0, 0.4, 0.3, 0.0, 2.0, -0.6]);
+    let tau: SVector<f64, 6> = Ur5::inverse_dynamics_na(&q, &v, &a);
+    assert_eq!(
+        tau.as_slice(),
+        Ur5::inverse_dynamics(&q.into(), &v.into(), &a.into())
+    );
+    let m: SMatrix<f64, 6, 6> = Ur5::mass_matrix_na(&q);
+    let rows = Ur5::mass_matrix(&q.into());
+    for (i, row) in rows.iter().enumerate() {
+        for (j, x) in row.iter().enumerate() {
+            assert_eq!(m[(i, j)], *x);
+        }
+    }
+    let c = Ur5::coriolis_matrix_na(&q, &v);
+    assert_eq!(c[(0, 1)], Ur5::coriolis_matrix(&q.into(), &v.into())[0][1]);
+    assert_eq!(
+        Ur5::kinetic_energy_na(&q, &v),
+        Ur5::kinetic_energy(&q.into(), &v.into())
+    );
+}

@@ -83,6 +83,67 @@ fn joint_tokens(rt: &TokenStream, j: &DeclaredJoint) -> TokenStream {
     }
 }
 
+/// The type's documentation: the user's doc comments, then the coordinates (which entries of
+/// q and v each joint owns) and the bodies, each with its own doc comments.
+fn documentation(model: &Model) -> Vec<String> {
+    use crate::model::JointKind;
+    let mut lines = model.docs.clone();
+    if !lines.is_empty() {
+        lines.push(String::new());
+    }
+    lines.push(" # Joints and coordinates".into());
+    lines.push(String::new());
+    lines.push(" | joint | moves | kind | q | v |".into());
+    lines.push(" | --- | --- | --- | --- | --- |".into());
+    for body in &model.bodies {
+        let j = &body.joint;
+        let (kind, q, v) = match &j.kind {
+            JointKind::Revolute { axis_in_joint: a } => (
+                format!("revolute about [{}, {}, {}]", a[0], a[1], a[2]),
+                format!("q[{}]", j.idx_q),
+                format!("v[{}]", j.idx_v),
+            ),
+            JointKind::Prismatic { axis_in_joint: a } => (
+                format!("prismatic along [{}, {}, {}]", a[0], a[1], a[2]),
+                format!("q[{}]", j.idx_q),
+                format!("v[{}]", j.idx_v),
+            ),
+            JointKind::Free => (
+                "free (position, quaternion x y z w; v = [v; ω] in the body frame)".into(),
+                format!("q[{}..{}]", j.idx_q, j.idx_q + 7),
+                format!("v[{}..{}]", j.idx_v, j.idx_v + 6),
+            ),
+        };
+        let carries: Vec<&str> = body.parts.iter().skip(1).map(|p| p.name.as_str()).collect();
+        let moves = if carries.is_empty() {
+            format!("`{}`", body.name)
+        } else {
+            format!("`{}` (with `{}`)", body.name, carries.join("`, `"))
+        };
+        lines.push(format!(" | `{}` | {moves} | {kind} | {q} | {v} |", j.name));
+    }
+    let documented: Vec<(&str, &[String])> = model
+        .bodies
+        .iter()
+        .flat_map(|b| {
+            [
+                (b.joint.name.as_str(), b.joint.docs.as_slice()),
+                (b.name.as_str(), b.docs.as_slice()),
+            ]
+        })
+        .filter(|(_, docs)| !docs.is_empty())
+        .collect();
+    if !documented.is_empty() {
+        lines.push(String::new());
+        lines.push(" # Bodies and joints".into());
+        for (name, docs) in documented {
+            lines.push(String::new());
+            lines.push(format!(" `{name}`:{}", docs.join(" ")));
+        }
+    }
+    lines
+}
+
 /// The op counts of one generated function, for `Mechanism::FUNCTIONS`.
 pub struct Cost {
     /// The function's name.
@@ -96,7 +157,7 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
     let name = &model.name;
     let vis = &model.visibility;
     let name_str = name.to_string();
-    let docs = &model.docs;
+    let docs = documentation(model);
     let (nq, nv) = (model.nq, model.nv);
     let body_names = model.bodies.iter().map(|b| &b.name);
     let joint_names = model.bodies.iter().map(|b| &b.joint.name);

@@ -570,6 +570,58 @@ fn f64_literal(x: f64) -> TokenStream {
     }
 }
 
+/// A wrapper of the function `spec` describes taking and returning nalgebra types:
+/// `SVector<T, N>` for vector arguments and results, `SMatrix<T, R, C>` for matrix results,
+/// named `<name>_na`. Arguments are borrowed without copying (an `SVector`'s storage is the
+/// array the straight-line function takes); results are moved into nalgebra storage.
+/// `nalgebra` is the path of the nalgebra crate as the generated code sees it.
+#[must_use]
+pub fn emit_nalgebra_wrapper(spec: &FunctionSpec, nalgebra: &TokenStream) -> TokenStream {
+    let name = &spec.name;
+    let wrapper = format_ident!("{}_na", spec.name);
+    let vis = &spec.vis;
+    let trait_ = &spec.scalar_trait;
+    let params = spec.args.iter().map(|arg| {
+        let ident = format_ident!("{}", arg.array.name());
+        let len = Literal::usize_unsuffixed(arg.len);
+        quote!(#ident: &#nalgebra::SVector<T, #len>)
+    });
+    let forwarded = spec.args.iter().map(|arg| {
+        let ident = format_ident!("{}", arg.array.name());
+        quote!(&#ident.data.0[0])
+    });
+    let call = quote!(Self::#name(#(#forwarded),*));
+    let (ret, body) = match &spec.output {
+        Output::Scalar(_) => (quote!(T), call),
+        Output::Vector(v) => {
+            let n = Literal::usize_unsuffixed(v.len());
+            (
+                quote!(#nalgebra::SVector<T, #n>),
+                quote!(#nalgebra::SVector::from(#call)),
+            )
+        }
+        Output::Matrix(rows) => {
+            let r = Literal::usize_unsuffixed(rows.len());
+            let c = Literal::usize_unsuffixed(rows.first().map_or(0, Vec::len));
+            // The rows array, read as column-major storage, is the transpose.
+            (
+                quote!(#nalgebra::SMatrix<T, #r, #c>),
+                quote!(#nalgebra::SMatrix::<T, #c, #r>::from_array_storage(#nalgebra::ArrayStorage(#call)).transpose()),
+            )
+        }
+        Output::Tuple(_) => return TokenStream::new(),
+    };
+    let doc = format!(" [`Self::{name}`] with nalgebra vectors and matrices.");
+    quote! {
+        #[doc = #doc]
+        #[inline]
+        #[must_use]
+        #vis fn #wrapper<T: #trait_>(#(#params),*) -> #ret {
+            #body
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::{emit_function, f64_literal, Arg, FunctionSpec, Output};

@@ -51,10 +51,13 @@ pub fn compile(mut mechanism: syntax::Mechanism, manifest_dir: &Path) -> syn::Re
 /// dynamics functions as inherent associated functions.
 pub fn to_tokens(compiled: &Compiled) -> TokenStream {
     let name = &compiled.model.name;
-    let functions = compiled
-        .functions
-        .iter()
-        .map(|f| emit::emit_function(&f.graph, &f.spec));
+    let runtime = runtime_path();
+    let nalgebra = quote!(#runtime::nalgebra);
+    let functions = compiled.functions.iter().map(|f| {
+        let function = emit::emit_function(&f.graph, &f.spec);
+        let wrapper = emit::emit_nalgebra_wrapper(&f.spec, &nalgebra);
+        quote!(#function #wrapper)
+    });
     let costs: Vec<declare::Cost> = compiled
         .functions
         .iter()
@@ -63,7 +66,7 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
             ops: f.graph.op_count(&f.spec.output.nodes()),
         })
         .collect();
-    let declaration = declare::declare(&compiled.model, &costs, &runtime_path());
+    let declaration = declare::declare(&compiled.model, &costs, &runtime);
     quote! {
         #declaration
         impl #name {
@@ -89,6 +92,39 @@ pub fn expand_mechanism(input: TokenStream) -> TokenStream {
                 #errors
                 #vis struct #name;
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn doc_comments_reach_the_generated_type() {
+        let mechanism: syntax::Mechanism = syn::parse2(quote! {
+            /// A test arm.
+            pub struct Arm;
+            /// The upper arm.
+            body upper { mass: 1.0, com: [0.2, 0.0, 0.0], shape: point }
+            /// The tool, welded on.
+            body tool { mass: 0.2, shape: point }
+            /// The shoulder.
+            joint shoulder: revolute(ground -> upper) { axis: z }
+            joint weld: fixed(upper -> tool) { at: [0.4, 0.0, 0.0] }
+        })
+        .expect("parses");
+        let compiled = compile(mechanism, Path::new(".")).expect("valid");
+        let file: syn::File = syn::parse2(to_tokens(&compiled)).expect("valid Rust");
+        let text = prettyplease::unparse(&file);
+        for expected in [
+            "/// A test arm.",
+            "| `shoulder` | `upper` (with `tool`) | revolute about [0, 0, 1] | q[0] | v[0] |",
+            "`shoulder`: The shoulder.",
+            "`upper`: The upper arm.",
+            "pub fn inverse_dynamics_na<",
+        ] {
+            assert!(text.contains(expected), "missing {expected:?} in\n{text}");
         }
     }
 }

@@ -18,5 +18,7 @@ pub use model::{
     BodySpec, Inertia, JointKind, JointSpec, JointType, Model, ModelBuilder, ModelError,
     ModelErrors, Placement, SizeError, GROUND,
 };
+/// The nalgebra version the runtime and the generated `*_na` wrappers use.
+pub use nalgebra;
 pub use reference::{Pose, Reference, Wrench};
 pub use scalar::Scalar;
