@@ -3,5 +3,6 @@
 
 pub mod anchors;
 pub mod puma560;
+pub mod quadruped;
 pub mod seed;
 pub mod urdf_anchors;
