@@ -231,3 +231,102 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
         }
     }
 }
+
+/// `impl<T: Scalar> Dynamics<T>` (when forward dynamics is generated) and `Energy<T>`
+/// (when the energies are too), delegating to the generated functions, so integrators and
+/// controllers can be generic over mechanisms.
+pub fn dynamics_traits(model: &Model, rt: &TokenStream) -> TokenStream {
+    if !model.outputs.forward_dynamics || model.nv == 0 {
+        return TokenStream::new();
+    }
+    let name = &model.name;
+    let (nq, nv, np, nl) = (
+        model.nq,
+        model.nv,
+        model.parameters.len(),
+        model.load_inputs,
+    );
+    let p_arg = (np > 0).then(|| quote!(parameters,));
+    let loads_arg = (nl > 0).then(|| quote!(loads,));
+    let nominal = model.parameters.iter().map(|p| float_literal(p.nominal));
+    let free_bodies = || {
+        model
+            .bodies
+            .iter()
+            .filter(|b| matches!(b.joint.kind, crate::model::JointKind::Free))
+    };
+    let free_joints = free_bodies().map(|b| {
+        let (iq, iv) = (b.joint.idx_q, b.joint.idx_v);
+        quote!((#iq, #iv))
+    });
+    let neutral_quaternions = free_bodies().map(|b| {
+        let w = b.joint.idx_q + 6;
+        quote!(q[#w] = T::one();)
+    });
+    let unused = quote! {
+        let _ = parameters;
+        let _ = loads;
+    };
+    let energy = model.outputs.energy.then(|| {
+        quote! {
+            impl<T: #rt::Scalar> #rt::Energy<T> for #name {
+                #[inline]
+                fn total_energy(q: &[T; #nq], v: &[T; #nv], parameters: &[T; #np]) -> T {
+                    let _ = parameters;
+                    #name::kinetic_energy(q, v, #p_arg) + #name::potential_energy(q, #p_arg)
+                }
+            }
+        }
+    });
+    quote! {
+        impl<T: #rt::Scalar> #rt::Dynamics<T> for #name {
+            type Configuration = [T; #nq];
+            type Velocity = [T; #nv];
+            type Parameters = [T; #np];
+            type Loads = [T; #nl];
+            type Matrix = [[T; #nv]; #nv];
+
+            #[inline]
+            fn zero_velocity() -> [T; #nv] {
+                [T::zero(); #nv]
+            }
+            #[inline]
+            fn zero_loads() -> [T; #nl] {
+                [T::zero(); #nl]
+            }
+            #[inline]
+            fn zero_matrix() -> [[T; #nv]; #nv] {
+                [[T::zero(); #nv]; #nv]
+            }
+            #[inline]
+            fn nominal_parameters() -> [T; #np] {
+                [#(T::from_f64(#nominal)),*]
+            }
+            #[inline]
+            fn neutral_configuration() -> [T; #nq] {
+                #[allow(unused_mut)]
+                let mut q = [T::zero(); #nq];
+                #(#neutral_quaternions)*
+                q
+            }
+            #[inline]
+            fn acceleration(
+                q: &[T; #nq],
+                v: &[T; #nv],
+                tau: &[T; #nv],
+                parameters: &[T; #np],
+                loads: &[T; #nl],
+            ) -> [T; #nv] {
+                #unused
+                #name::forward_dynamics(q, v, tau, #p_arg #loads_arg)
+            }
+            #[inline]
+            fn integrate(q: &[T; #nq], v: &[T; #nv], dt: T) -> [T; #nq] {
+                let mut out = *q;
+                #rt::dynamics::integrate_configuration(q, v, dt, &[#(#free_joints),*], &mut out);
+                out
+            }
+        }
+        #energy
+    }
+}

@@ -67,8 +67,10 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
         })
         .collect();
     let declaration = declare::declare(&compiled.model, &costs, &runtime);
+    let traits = declare::dynamics_traits(&compiled.model, &runtime);
     quote! {
         #declaration
+        #traits
         impl #name {
             #(#functions)*
         }

@@ -7,11 +7,14 @@
 
 extern crate self as dynamics_runtime;
 
+pub mod dynamics;
+pub mod integrators;
 pub mod mechanism;
 pub mod model;
 pub mod reference;
 pub mod scalar;
 
+pub use dynamics::{Dynamics, Energy};
 pub use dynamics_macros::mechanism;
 pub use mechanism::{FunctionCost, Mechanism};
 pub use model::{

@@ -35,7 +35,7 @@ mechanism! {
     /// kg·m². Spinning at ω = (1, 2, 3) rad/s with α = 0 it needs M_G = ω × I_G ω =
     /// (0.6, −0.6, 0.2) N·m.
     pub struct GyroscopicBody;
-    outputs: [inverse_dynamics, mass_matrix, energy];
+    outputs: [inverse_dynamics, mass_matrix, forward_dynamics, energy];
 
     /// The body, its frame at the mass centre along the principal axes.
     body body { mass: 1.0, inertia: diag([0.2, 0.3, 0.4]) }

@@ -56,9 +56,17 @@ impl Signature<'_> {
 
     /// The arguments, in the fixed order q, v, a, tau, p, loads.
     fn args(&self, arrays: &[Array]) -> Vec<Arg> {
-        arrays
+        let order = [
+            Array::Q,
+            Array::V,
+            Array::A,
+            Array::Tau,
+            Array::P,
+            Array::Loads,
+        ];
+        order
             .iter()
-            .chain(&[Array::P])
+            .filter(|a| **a == Array::P || arrays.contains(a))
             .filter_map(|&a| self.arg(a))
             .collect()
     }
@@ -550,5 +558,26 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn arguments_come_in_the_documented_order() {
+        let functions = compile(quote! {
+            struct P;
+            parameters: [tip = 1.0];
+            body b { mass: tip, com: [0.1, 0.0, 0.0], shape: point }
+            joint j: revolute(ground -> b) { axis: z }
+            load push: force on b;
+        });
+        let order = |name: &str| -> Vec<&str> {
+            let f = functions
+                .iter()
+                .find(|f| f.spec.name == name)
+                .expect("generated");
+            f.spec.args.iter().map(|a| a.array.name()).collect()
+        };
+        assert_eq!(order("inverse_dynamics"), ["q", "v", "a", "p", "loads"]);
+        assert_eq!(order("forward_dynamics"), ["q", "v", "tau", "p", "loads"]);
+        assert_eq!(order("mass_matrix"), ["q", "p"]);
     }
 }
