@@ -7,6 +7,7 @@
 
 extern crate self as dynamics_runtime;
 
+pub mod double_double;
 pub mod dynamics;
 pub mod integrators;
 pub mod mechanism;
@@ -14,6 +15,7 @@ pub mod model;
 pub mod reference;
 pub mod scalar;
 
+pub use double_double::DoubleDouble;
 pub use dynamics::{Dynamics, Energy};
 pub use dynamics_macros::mechanism;
 pub use mechanism::{FunctionCost, Mechanism};
