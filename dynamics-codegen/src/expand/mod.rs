@@ -288,6 +288,30 @@ pub fn expand(model: &Model, scalar_trait: syn::Path) -> Vec<Function> {
         let arrays = with_loads(vec![Array::Q, Array::V, Array::Tau]);
         functions.push(sig.function(graph, "forward_dynamics", doc, &arrays, Output::Vector(qdd)));
     }
+    for (wanted, method, name, phrase) in [
+        (
+            outputs.forward_dynamics_aba,
+            ForwardMethod::ArticulatedBody,
+            "forward_dynamics_aba",
+            "the articulated-body algorithm",
+        ),
+        (
+            outputs.forward_dynamics_ldlt,
+            ForwardMethod::MassMatrixLdlt,
+            "forward_dynamics_ldlt",
+            "a tree-sparse LDLᵀ factorization of M",
+        ),
+    ] {
+        if wanted && nv > 0 {
+            let (graph, qdd) = forward_dynamics_by(model, loads, method);
+            let doc = format!(
+                "Forward dynamics q̈ = M(q)⁻¹ (τ + Q − C(q, q̇) q̇ − g(q) − b q̇) by {phrase}, whatever \
+                 it costs. A singular M gives non-finite values, never a panic."
+            );
+            let arrays = with_loads(vec![Array::Q, Array::V, Array::Tau]);
+            functions.push(sig.function(graph, name, doc, &arrays, Output::Vector(qdd)));
+        }
+    }
     if outputs.energy {
         let (g, t, i) = setup();
         let v = inputs(&g, Array::V, nv);

@@ -36,8 +36,12 @@ pub struct Outputs {
     pub gravity: bool,
     /// C(q, q̇) q̇ + g(q).
     pub bias: bool,
-    /// q̈ = M⁻¹ (τ + Q − C q̇ − g).
+    /// q̈ = M⁻¹ (τ + Q − C q̇ − g), by the cheaper of the two methods.
     pub forward_dynamics: bool,
+    /// The same by the articulated-body algorithm, as `forward_dynamics_aba`.
+    pub forward_dynamics_aba: bool,
+    /// The same by LDLᵀ of the mass matrix, as `forward_dynamics_ldlt`.
+    pub forward_dynamics_ldlt: bool,
     /// Kinetic and potential energy.
     pub energy: bool,
     /// The wrench each joint transmits to its child body.
@@ -46,13 +50,15 @@ pub struct Outputs {
 
 impl Outputs {
     /// The output names the language accepts, with their meaning.
-    pub const NAMES: [&'static str; 8] = [
+    pub const NAMES: [&'static str; 10] = [
         "inverse_dynamics",
         "mass_matrix",
         "coriolis",
         "gravity",
         "bias",
         "forward_dynamics",
+        "forward_dynamics_aba",
+        "forward_dynamics_ldlt",
         "energy",
         "reactions",
     ];
@@ -66,6 +72,8 @@ impl Outputs {
             gravity: true,
             bias: true,
             forward_dynamics: true,
+            forward_dynamics_aba: false,
+            forward_dynamics_ldlt: false,
             energy: true,
             reactions: true,
         }
@@ -80,6 +88,8 @@ impl Outputs {
             "gravity" => &mut self.gravity,
             "bias" => &mut self.bias,
             "forward_dynamics" => &mut self.forward_dynamics,
+            "forward_dynamics_aba" => &mut self.forward_dynamics_aba,
+            "forward_dynamics_ldlt" => &mut self.forward_dynamics_ldlt,
             "energy" => &mut self.energy,
             "reactions" => &mut self.reactions,
             _ => return false,
@@ -96,6 +106,8 @@ impl Outputs {
             || self.gravity
             || self.bias
             || self.forward_dynamics
+            || self.forward_dynamics_aba
+            || self.forward_dynamics_ldlt
     }
 }
 
