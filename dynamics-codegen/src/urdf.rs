@@ -11,7 +11,8 @@
 //! refused: the tree expansion has no closed form for them.
 
 use crate::syntax::{
-    self, Axis, Body, InertiaForm, Joint, JointKind, Matrix, Name, Number, Rotation, Vector,
+    self, Axis, Body, InertiaForm, Joint, JointKind, Matrix, Name, Number, Rotation, SpanRange,
+    Vector,
 };
 use std::path::{Path, PathBuf};
 
@@ -37,7 +38,7 @@ pub fn import(
         )
     })?;
     let robot = urdf_rs::read_from_string(&text)
-        .map_err(|e| syn::Error::new(span, format!("URDF file `{written}` is malformed: {e}")))?;
+        .map_err(|e| syn::Error::new(span, malformed(&written, &text, &e)))?;
     let mut errors: Option<syn::Error> = None;
     let mut refuse = |message: String| {
         let e = syn::Error::new(span, format!("URDF file `{written}`: {message}"));
@@ -47,9 +48,10 @@ pub fn import(
         }
     };
     let number = |x: f64| Number::constant(x, span);
+    let range = SpanRange::from(span);
     let vector = |v: [f64; 3]| Vector {
         components: v.map(number),
-        span,
+        span: range,
     };
     let name = |text: &str| Name {
         text: text.to_owned(),
@@ -70,9 +72,9 @@ pub fn import(
             com: Some(vector(link.inertial.origin.xyz.0)),
             inertia: Some(InertiaForm::Matrix(Matrix {
                 rows: std::array::from_fn(|a| std::array::from_fn(|b| number(inertia[(a, b)]))),
-                span,
+                span: range,
             })),
-            span,
+            span: range,
         });
     }
     for joint in &robot.joints {
@@ -80,10 +82,17 @@ pub fn import(
             urdf_rs::JointType::Revolute | urdf_rs::JointType::Continuous => JointKind::Revolute,
             urdf_rs::JointType::Prismatic => JointKind::Prismatic,
             urdf_rs::JointType::Fixed => JointKind::Fixed,
-            ref other => {
+            urdf_rs::JointType::Floating
+            | urdf_rs::JointType::Planar
+            | urdf_rs::JointType::Spherical => {
+                let written_type = match joint.joint_type {
+                    urdf_rs::JointType::Floating => "floating",
+                    urdf_rs::JointType::Planar => "planar",
+                    _ => "spherical",
+                };
                 refuse(format!(
-                    "joint `{}` is a {other:?} joint, which is not supported (use revolute, \
-                     continuous, prismatic or fixed joints)",
+                    "joint `{}` is a `{written_type}` joint, which is not supported (use \
+                     revolute, continuous, prismatic or fixed joints)",
                     joint.name
                 ));
                 continue;
@@ -107,10 +116,10 @@ pub fn import(
             child: name(&joint.child.link),
             axis: moving.then(|| Axis {
                 direction: vector(joint.axis.xyz.0),
-                span,
+                span: range,
             }),
             at: Some(vector(joint.origin.xyz.0)),
-            rotation: Some(Rotation::Rpy(joint.origin.rpy.0.map(number), span)),
+            rotation: Some(Rotation::Rpy(joint.origin.rpy.0.map(number), range)),
             armature: None,
             damping: joint
                 .dynamics
@@ -159,6 +168,39 @@ pub fn import(
     }
 }
 
+/// The message for a file urdf-rs cannot read. Its XML errors carry no position, so when
+/// the file is not well-formed XML, roxmltree's message, which has one, replaces them
+/// (roxmltree only runs on files urdf-rs refused, so it never refuses one urdf-rs reads).
+fn malformed(written: &str, text: &str, urdf_error: &urdf_rs::UrdfError) -> String {
+    let options = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        ..roxmltree::ParsingOptions::default()
+    };
+    let e = match roxmltree::Document::parse_with_options(text, options) {
+        Ok(_) => return format!("URDF file `{written}` is malformed: {urdf_error}"),
+        Err(e) => e,
+    };
+    // roxmltree writes the position, when it has one, into its message as ` at row:col`.
+    let position = e.pos();
+    let at = format!(" at {position}");
+    let described = e.to_string();
+    let message = match &e {
+        roxmltree::Error::UnexpectedCloseTag(expected, actual, _) => format!(
+            "found `</{actual}>` where `</{expected}>` was expected (is a `<{expected}>` \
+             element left open?)"
+        ),
+        _ => described.replacen(&at, "", 1),
+    };
+    if described.contains(&at) {
+        format!(
+            "URDF file `{written}` is malformed at line {}, column {}: {message}",
+            position.row, position.col
+        )
+    } else {
+        format!("URDF file `{written}` is malformed: {message}")
+    }
+}
+
 /// The manifest directory of the crate being compiled (where URDF paths are relative to).
 pub fn manifest_dir() -> PathBuf {
     std::env::var_os("CARGO_MANIFEST_DIR")
@@ -193,6 +235,55 @@ mod tests {
             .expect("imports");
         let model = crate::model::lower(&m).expect("valid");
         assert_eq!((model.nq, model.nv), (13, 12));
+    }
+
+    /// Imports `text` as a URDF file written into a fresh temporary directory.
+    fn import_text(test: &str, text: &str) -> syn::Result<syntax::Mechanism> {
+        let dir = std::env::temp_dir().join(format!(
+            "dynamics-codegen-urdf-{test}-{}",
+            std::process::id()
+        ));
+        std::fs::create_dir_all(&dir).expect("temporary directory");
+        std::fs::write(dir.join("robot.urdf"), text).expect("write URDF");
+        let mut m: syntax::Mechanism = syn::parse2(quote! { struct R; urdf: "robot.urdf"; })?;
+        let result = import(&mut m, &dir);
+        std::fs::remove_dir_all(&dir).expect("remove temporary directory");
+        result.map(|_| m)
+    }
+
+    #[test]
+    fn malformed_file_reports_a_line_and_column() {
+        let e = import_text(
+            "malformed",
+            "<robot name=\"r\">\n  <link name=\"base\"/>\n  <link name=\"arm\">\n</robot>\n",
+        )
+        .expect_err("malformed");
+        assert_eq!(
+            e.to_string(),
+            "URDF file `robot.urdf` is malformed at line 4, column 1: found `</robot>` where \
+             `</link>` was expected (is a `<link>` element left open?)"
+        );
+    }
+
+    #[test]
+    fn unsupported_joints_are_named_as_in_urdf() {
+        let e = import_text(
+            "planar",
+            r#"<robot name="r">
+                 <link name="base"/>
+                 <link name="arm">
+                   <inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+                 </link>
+                 <joint name="slide" type="planar">
+                   <parent link="base"/><child link="arm"/>
+                 </joint>
+               </robot>"#,
+        )
+        .expect_err("planar");
+        assert!(
+            e.to_string().contains("joint `slide` is a `planar` joint"),
+            "{e}"
+        );
     }
 
     #[test]

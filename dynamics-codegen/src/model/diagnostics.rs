@@ -1,6 +1,6 @@
 //! Errors collected across rules: each at the span of the offending tokens.
 
-use proc_macro2::Span;
+use crate::syntax::SpanRange;
 
 /// The errors found so far.
 #[derive(Default, Debug)]
@@ -9,9 +9,10 @@ pub struct Diagnostics {
 }
 
 impl Diagnostics {
-    /// Records an error at a span.
-    pub fn error(&mut self, span: Span, message: impl std::fmt::Display) {
-        self.errors.push(syn::Error::new(span, message));
+    /// Records an error at a span: a single token's `Span`, or a [`SpanRange`] from the
+    /// first to the last token of a node (the error then covers all of it).
+    pub fn error(&mut self, span: impl Into<SpanRange>, message: impl std::fmt::Display) {
+        self.errors.push(span.into().error(message));
     }
 
     /// Records an already-built error.

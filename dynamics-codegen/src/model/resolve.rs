@@ -6,18 +6,17 @@
 
 use super::value::{rotate_matrix, Mat3, Value, Vec3};
 use super::{rules, Diagnostics, Outputs, Parameter};
-use crate::syntax::{self, Axis, InertiaForm, Number, NumberValue, Rotation, ShapeKind};
-use proc_macro2::Span;
+use crate::syntax::{self, Axis, InertiaForm, Number, NumberValue, Rotation, ShapeKind, SpanRange};
 
 /// A body with resolved numbers.
 pub(crate) struct ResolvedBody {
     pub docs: Vec<String>,
     pub name: syntax::Name,
     pub mass: Value,
-    pub mass_span: Span,
+    pub mass_span: SpanRange,
     pub com: Vec3,
     pub inertia: Mat3,
-    pub inertia_span: Span,
+    pub inertia_span: SpanRange,
 }
 
 /// A joint with resolved numbers.
@@ -25,16 +24,15 @@ pub(crate) struct ResolvedJoint {
     pub docs: Vec<String>,
     pub name: syntax::Name,
     pub kind: syntax::JointKind,
-    pub kind_span: Span,
     pub parent: syntax::Name,
     pub child: syntax::Name,
     /// The axis as given, and its span (revolute and prismatic only).
-    pub axis: Option<([f64; 3], Span)>,
+    pub axis: Option<([f64; 3], SpanRange)>,
     pub translation: Vec3,
     pub rotation: [[f64; 3]; 3],
-    pub rotation_span: Span,
-    pub armature: (Value, Span),
-    pub damping: (Value, Span),
+    pub rotation_span: SpanRange,
+    pub armature: (Value, SpanRange),
+    pub damping: (Value, SpanRange),
 }
 
 /// The whole declaration, resolved.
@@ -210,7 +208,7 @@ impl Resolver<'_> {
     }
 
     /// Factors of an axisymmetric solid whose axis is a coordinate axis.
-    fn about_axis(&mut self, axis: [f64; 3], along: f64, across: f64, span: Span) -> [f64; 3] {
+    fn about_axis(&mut self, axis: [f64; 3], along: f64, across: f64, span: SpanRange) -> [f64; 3] {
         let nonzero: Vec<usize> = (0..3).filter(|&i| axis[i] != 0.0).collect();
         match nonzero.as_slice() {
             [k] => std::array::from_fn(|i| if i == *k { along } else { across }),
@@ -309,11 +307,19 @@ pub(crate) fn resolve(mechanism: &syntax::Mechanism, diagnostics: &mut Diagnosti
 }
 
 fn resolve_body(r: &mut Resolver, body: &syntax::Body) -> ResolvedBody {
+    let name_span = SpanRange::from(body.name.span);
     let (mass, mass_span) = match &body.mass {
         Some(m) => (r.value(m), m.span),
         None => {
-            rules::report_missing_field(&body.name, "mass", "mass: 1.0", body.span, r.diagnostics);
-            (Value::constant(0.0), body.span)
+            rules::report_missing_field(
+                "body",
+                &body.name,
+                "mass",
+                "`mass: 1.0`",
+                body.name.span,
+                r.diagnostics,
+            );
+            (Value::constant(0.0), name_span)
         }
     };
     let com = match &body.com {
@@ -331,15 +337,16 @@ fn resolve_body(r: &mut Resolver, body: &syntax::Body) -> ResolvedBody {
         }
         None => {
             rules::report_missing_field(
+                "body",
                 &body.name,
                 "inertia",
-                "inertia: [[..], [..], [..]], or shape: point for a point mass",
-                body.span,
+                "`inertia: [[..], [..], [..]]`, or `shape: point` for a point mass",
+                body.name.span,
                 r.diagnostics,
             );
             (
                 std::array::from_fn(|_| std::array::from_fn(|_| Value::constant(0.0))),
-                body.span,
+                name_span,
             )
         }
     };
@@ -360,9 +367,10 @@ fn resolve_joint(r: &mut Resolver, joint: &syntax::Joint) -> ResolvedJoint {
         (Some(a), Revolute | Prismatic) => Some((r.axis(a), a.span)),
         (None, Revolute | Prismatic) => {
             rules::report_missing_field(
+                "joint",
                 &joint.name,
                 "axis",
-                "axis: z",
+                "`axis: z`",
                 joint.kind_span,
                 r.diagnostics,
             );
@@ -380,11 +388,11 @@ fn resolve_joint(r: &mut Resolver, joint: &syntax::Joint) -> ResolvedJoint {
     };
     let (rotation, rotation_span) = match &joint.rotation {
         Some(rot) => (r.rotation(rot), rot.span()),
-        None => (IDENTITY, joint.name.span),
+        None => (IDENTITY, SpanRange::from(joint.name.span)),
     };
     let mut coefficient = |n: &Option<Number>| match n {
         Some(n) => (r.value(n), n.span),
-        None => (Value::constant(0.0), joint.name.span),
+        None => (Value::constant(0.0), SpanRange::from(joint.name.span)),
     };
     let armature = coefficient(&joint.armature);
     let damping = coefficient(&joint.damping);
@@ -392,7 +400,6 @@ fn resolve_joint(r: &mut Resolver, joint: &syntax::Joint) -> ResolvedJoint {
         docs: joint.docs.clone(),
         name: joint.name.clone(),
         kind: joint.kind,
-        kind_span: joint.kind_span,
         parent: joint.parent.clone(),
         child: joint.child.clone(),
         axis,

@@ -4,11 +4,15 @@
 //! at the span of the offending tokens with the numbers involved and a hint. Physical rules
 //! use the parameters' nominal values. Tolerances are relative, as in the runtime's own
 //! validation, so that numbers rounded by hand or by a URDF exporter pass.
+//!
+//! Numbers the user wrote are printed as written (Rust's shortest round-trip form); numbers
+//! a rule computed (principal moments, determinants, sums) with six significant digits, by
+//! [`computed`], so that rounding noise such as `0.30000000000000004` does not show.
 
 use super::resolve::{Resolved, ResolvedBody, ResolvedJoint};
-use super::value::{nominal33, Mat3};
+use super::value::{nominal33, Mat3, Value};
 use super::{Diagnostics, Outputs};
-use crate::syntax::{self, JointKind, Name};
+use crate::syntax::{self, JointKind, Name, SpanRange};
 use nalgebra::{Matrix3, SymmetricEigen};
 use proc_macro2::Span;
 use std::collections::HashMap;
@@ -27,7 +31,7 @@ pub(crate) fn check_all(mechanism: &syntax::Mechanism, resolved: &Resolved, d: &
     names_are_unique(mechanism, d);
     for body in &resolved.bodies {
         let inertia = matrix(&nominal33(&body.inertia, &p));
-        mass_is_not_negative(body, body.mass.nominal(&p), d);
+        mass_is_not_negative(body, &p, d);
         if inertia_is_symmetric(body, &inertia, d) {
             inertia_is_positive(body, &inertia, d);
             if !resolved.skip_triangle_inequality {
@@ -52,8 +56,35 @@ fn matrix(m: &[[f64; 3]; 3]) -> Matrix3<f64> {
     Matrix3::from_fn(|i, j| m[i][j])
 }
 
+/// A number computed by a rule, for a message: six significant digits, positional notation
+/// from 1e-4 to 1e6 and scientific notation outside (`0.30000000000000004` → `0.3`,
+/// `-2.9999999999999996e-17` → `-3e-17`, `-0.0` → `0`).
+pub(crate) fn computed(x: f64) -> String {
+    if !x.is_finite() {
+        return x.to_string();
+    }
+    let rounded: f64 = format!("{x:.5e}").parse().unwrap_or(x);
+    if rounded == 0.0 {
+        "0".to_owned()
+    } else if (1e-4..1e6).contains(&rounded.abs()) {
+        format!("{rounded}")
+    } else {
+        format!("{rounded:e}")
+    }
+}
+
+/// The nominal value of a number for a message: as written when it is a constant, else
+/// (a parameter times a coefficient, at the parameter's nominal value) as [`computed`].
+fn nominal_text(value: &Value, p: &[f64]) -> String {
+    if value.is_constant() {
+        format!("{}", value.constant)
+    } else {
+        computed(value.nominal(p))
+    }
+}
+
 /// Rule: every number is finite (no NaN, no infinity, e.g. from `1.0 / 0.0`).
-pub(crate) fn number_is_finite(value: f64, span: Span, d: &mut Diagnostics) {
+pub(crate) fn number_is_finite(value: f64, span: SpanRange, d: &mut Diagnostics) {
     if !value.is_finite() {
         d.error(
             span,
@@ -63,7 +94,7 @@ pub(crate) fn number_is_finite(value: f64, span: Span, d: &mut Diagnostics) {
 }
 
 /// Rule: a number names only declared parameters.
-pub(crate) fn report_undeclared_parameter(name: &str, span: Span, d: &mut Diagnostics) {
+pub(crate) fn report_undeclared_parameter(name: &str, span: SpanRange, d: &mut Diagnostics) {
     d.error(
         span,
         format!(
@@ -79,7 +110,7 @@ pub(crate) fn report_undeclared_parameter(name: &str, span: Span, d: &mut Diagno
 pub(crate) fn report_parameter_not_allowed(
     name: &str,
     what: &str,
-    span: Span,
+    span: SpanRange,
     d: &mut Diagnostics,
 ) {
     d.error(
@@ -89,7 +120,7 @@ pub(crate) fn report_parameter_not_allowed(
 }
 
 /// Rule: an axis-angle rotation has a nonzero, finite axis.
-pub(crate) fn report_zero_rotation_axis(span: Span, d: &mut Diagnostics) {
+pub(crate) fn report_zero_rotation_axis(span: SpanRange, d: &mut Diagnostics) {
     d.error(
         span,
         "the rotation axis has zero length; give a nonzero direction",
@@ -97,7 +128,7 @@ pub(crate) fn report_zero_rotation_axis(span: Span, d: &mut Diagnostics) {
 }
 
 /// Rule: shape dimensions (lengths, radii) are not negative.
-pub(crate) fn shape_dimension_is_not_negative(value: f64, span: Span, d: &mut Diagnostics) {
+pub(crate) fn shape_dimension_is_not_negative(value: f64, span: SpanRange, d: &mut Diagnostics) {
     if value < 0.0 {
         d.error(
             span,
@@ -107,7 +138,9 @@ pub(crate) fn shape_dimension_is_not_negative(value: f64, span: Span, d: &mut Di
 }
 
 /// Rule: required fields are present (a body's mass and inertia, a moving joint's axis).
+/// `what` is `body` or `joint`; `example` is the hint, with its own backticks.
 pub(crate) fn report_missing_field(
+    what: &str,
     item: &Name,
     field: &str,
     example: &str,
@@ -117,15 +150,14 @@ pub(crate) fn report_missing_field(
     d.error(
         span,
         format!(
-            "`{}` has no `{field}`; add for example `{example}`",
+            "{what} `{}` has no `{field}`; add for example {example}",
             item.text
         ),
     );
-    let _ = item.span;
 }
 
 /// Rule: fixed and free joints take no axis.
-pub(crate) fn report_axis_not_allowed(kind: JointKind, span: Span, d: &mut Diagnostics) {
+pub(crate) fn report_axis_not_allowed(kind: JointKind, span: SpanRange, d: &mut Diagnostics) {
     let kind = match kind {
         JointKind::Fixed => "fixed",
         _ => "free",
@@ -148,9 +180,13 @@ pub(crate) fn output_is_known(outputs: &mut Outputs, name: &Name, d: &mut Diagno
 }
 
 /// Rule: every declared parameter is used somewhere (an unused one is almost always a typo).
+/// A second parameter of the same name is never used (the name means the first); it is
+/// reported once, by [`names_are_unique`].
 fn parameters_are_used(mechanism: &syntax::Mechanism, resolved: &Resolved, d: &mut Diagnostics) {
-    for (p, used) in mechanism.parameters.iter().zip(&resolved.parameter_used) {
-        if !used {
+    let parameters = &mechanism.parameters;
+    for (k, (p, used)) in parameters.iter().zip(&resolved.parameter_used).enumerate() {
+        let repeated = parameters[..k].iter().any(|q| q.name.text == p.name.text);
+        if !used && !repeated {
             d.error(
                 p.name.span,
                 format!("parameter `{}` is declared but never used", p.name.text),
@@ -160,7 +196,7 @@ fn parameters_are_used(mechanism: &syntax::Mechanism, resolved: &Resolved, d: &m
 }
 
 /// Rule: bodies, joints, loads and parameters have unique names, and no body is named
-/// `ground`.
+/// `ground`. A repeated name is reported at the repetition, then at the first declaration.
 fn names_are_unique(mechanism: &syntax::Mechanism, d: &mut Diagnostics) {
     let groups: [(&str, Vec<&Name>); 4] = [
         ("body", mechanism.bodies.iter().map(|b| &b.name).collect()),
@@ -179,24 +215,31 @@ fn names_are_unique(mechanism: &syntax::Mechanism, d: &mut Diagnostics) {
                     name.span,
                     "`ground` is the fixed world frame; a body cannot be named `ground`",
                 );
-            } else if seen.insert(&name.text, name).is_some() {
+            } else if let Some(first) = seen.get(name.text.as_str()) {
                 d.error(
                     name.span,
                     format!("a {kind} named `{}` is already declared", name.text),
                 );
+                d.error(
+                    first.span,
+                    format!("{kind} `{}` is first declared here", name.text),
+                );
+            } else {
+                seen.insert(&name.text, name);
             }
         }
     }
 }
 
 /// Rule: a body's mass is not negative.
-fn mass_is_not_negative(body: &ResolvedBody, mass: f64, d: &mut Diagnostics) {
-    if mass < 0.0 {
+fn mass_is_not_negative(body: &ResolvedBody, p: &[f64], d: &mut Diagnostics) {
+    if body.mass.nominal(p) < 0.0 {
         d.error(
             body.mass_span,
             format!(
-                "body `{}` has mass {mass} kg; a mass must be ≥ 0",
-                body.name.text
+                "body `{}` has mass {} kg; a mass must be ≥ 0",
+                body.name.text,
+                nominal_text(&body.mass, p)
             ),
         );
     }
@@ -240,7 +283,10 @@ fn inertia_is_positive(body: &ResolvedBody, inertia: &Matrix3<f64>, d: &mut Diag
             format!(
                 "the inertia of body `{}` is not positive semi-definite: its principal moments are \
                  {}, {}, {} kg·m²; check the signs of the products of inertia",
-                body.name.text, p[0], p[1], p[2]
+                body.name.text,
+                computed(p[0]),
+                computed(p[1]),
+                computed(p[2])
             ),
         );
     }
@@ -258,11 +304,11 @@ fn inertia_satisfies_triangle(body: &ResolvedBody, inertia: &Matrix3<f64>, d: &m
                  I1 + I2 ≥ I3 ({} < {}): no mass distribution has this inertia \
                  (`allow: [triangle_inequality];` accepts it anyway)",
                 body.name.text,
-                p[0],
-                p[1],
-                p[2],
-                p[0] + p[1],
-                p[2]
+                computed(p[0]),
+                computed(p[1]),
+                computed(p[2]),
+                computed(p[0] + p[1]),
+                computed(p[2])
             ),
         );
     }
@@ -292,9 +338,11 @@ fn rotation_is_proper(joint: &ResolvedJoint, d: &mut Diagnostics) {
         d.error(
             joint.rotation_span,
             format!(
-                "the rotation of joint `{}` is not orthonormal (max |RᵀR − 1| = {deviation:e}); \
-                 give a rotation matrix, rpy(r, p, y) or axis_angle([x, y, z], angle)",
-                joint.name.text
+                "the rotation of joint `{}` is not orthonormal: the largest entry of |RᵀR − 1| is {} \
+                 (at most {ROTATION_TOLERANCE:e} is accepted); give a rotation matrix whose rows are \
+                 orthogonal unit vectors, rpy(r, p, y) or axis_angle([x, y, z], angle)",
+                joint.name.text,
+                computed(deviation)
             ),
         );
     } else if r.determinant() < 0.0 {
@@ -303,7 +351,7 @@ fn rotation_is_proper(joint: &ResolvedJoint, d: &mut Diagnostics) {
             format!(
                 "the rotation of joint `{}` has determinant {}: it is a reflection, not a rotation",
                 joint.name.text,
-                r.determinant()
+                computed(r.determinant())
             ),
         );
     }
@@ -312,13 +360,13 @@ fn rotation_is_proper(joint: &ResolvedJoint, d: &mut Diagnostics) {
 /// Rule: armature and damping are not negative.
 fn joint_coefficients_are_not_negative(joint: &ResolvedJoint, p: &[f64], d: &mut Diagnostics) {
     for (field, (value, span)) in [("armature", &joint.armature), ("damping", &joint.damping)] {
-        let v = value.nominal(p);
-        if v < 0.0 {
+        if value.nominal(p) < 0.0 {
             d.error(
                 *span,
                 format!(
-                    "joint `{}` has {field} {v}; it must be ≥ 0",
-                    joint.name.text
+                    "joint `{}` has {field} {}; it must be ≥ 0",
+                    joint.name.text,
+                    nominal_text(value, p)
                 ),
             );
         }
@@ -365,10 +413,11 @@ fn joints_name_declared_bodies(mechanism: &syntax::Mechanism, d: &mut Diagnostic
 }
 
 /// Rule: every body is the child of at most one joint (a second parent would close a loop,
-/// which a tree cannot express).
+/// which a tree cannot express). A joint from a body to itself is not counted: it is
+/// reported once, by [`joints_name_declared_bodies`].
 fn body_has_one_parent(mechanism: &syntax::Mechanism, d: &mut Diagnostics) {
     let mut first: HashMap<&str, &syntax::Joint> = HashMap::new();
-    for joint in &mechanism.joints {
+    for joint in mechanism.joints.iter().filter(|j| !is_self_joint(j)) {
         if let Some(earlier) = first.insert(&joint.child.text, joint) {
             d.error(
                 joint.child.span,
@@ -383,23 +432,38 @@ fn body_has_one_parent(mechanism: &syntax::Mechanism, d: &mut Diagnostics) {
     }
 }
 
+/// Whether a joint attaches a body to itself (reported by [`joints_name_declared_bodies`]).
+fn is_self_joint(joint: &syntax::Joint) -> bool {
+    joint.child.text == joint.parent.text
+}
+
 /// Rule: every body is connected to the ground through a chain of joints (no body left
-/// floating, no cycle of joints that never reaches the ground).
+/// floating, no cycle of joints that never reaches the ground). Mistakes other rules report
+/// are not reported again here: a body named `ground` ([`names_are_unique`]) and a joint
+/// from a body to itself ([`joints_name_declared_bodies`]), which is then not counted as a
+/// parent, nor its body as left floating.
 fn bodies_reach_the_ground(mechanism: &syntax::Mechanism, d: &mut Diagnostics) {
     let parent_of: HashMap<&str, &str> = mechanism
         .joints
         .iter()
+        .filter(|j| !is_self_joint(j))
         .map(|j| (j.child.text.as_str(), j.parent.text.as_str()))
         .collect();
+    let has_self_joint = |n: &str| {
+        mechanism
+            .joints
+            .iter()
+            .any(|j| is_self_joint(j) && j.child.text == n)
+    };
     let declared = |n: &str| mechanism.bodies.iter().any(|b| b.name.text == n);
     let mut reported_cycle: Vec<&str> = Vec::new();
-    for body in &mechanism.bodies {
+    for body in mechanism.bodies.iter().filter(|b| b.name.text != GROUND) {
         let mut walk = body.name.text.as_str();
         let mut path = vec![walk];
         loop {
             match parent_of.get(walk) {
                 None => {
-                    if walk == body.name.text {
+                    if walk == body.name.text && !has_self_joint(walk) {
                         d.error(
                             body.name.span,
                             format!(
@@ -491,30 +555,78 @@ fn dynamics_need_a_degree_of_freedom(
     }
 }
 
+/// What [`coordinate_has_inertia`] measured for a joint, at the parameters' nominal values:
+/// the mass of the bodies the joint moves, and the largest over the configurations tried of
+/// the inertia its motion meets.
+pub(crate) struct CoordinateInertia {
+    /// Total mass of the bodies the joint moves (kg); independent of the configuration.
+    pub mass: f64,
+    /// Revolute: the moment of inertia of those bodies about the joint axis. Free: the
+    /// smallest principal moment of their inertia about the joint origin. Prismatic: unused
+    /// (a translation meets only the mass). In kg·m².
+    pub moment: f64,
+    /// How many configurations were tried.
+    pub configurations: usize,
+}
+
 /// Rule: every joint coordinate has inertia: a revolute joint's subtree has a nonzero moment
 /// of inertia about the joint axis, a prismatic joint's subtree has mass, a free joint's
 /// subtree has mass and a nonsingular rotational inertia, in at least one of the
-/// configurations sampled. Otherwise M(q) is singular for every q.
+/// configurations sampled. Otherwise M(q) is singular for every q. "Nonzero" is relative to
+/// `scale`, the size of the mechanism's inertia as a whole.
 pub(crate) fn coordinate_has_inertia(
     joint: &Name,
-    kind_span: Span,
-    inertia_about_axis: f64,
+    kind: &super::JointKind,
+    measured: &CoordinateInertia,
     scale: f64,
     d: &mut Diagnostics,
 ) {
-    if inertia_about_axis.abs() <= 1e-12 * scale.max(f64::MIN_POSITIVE) || inertia_about_axis == 0.0
-    {
-        let _ = kind_span;
-        d.error(
-            joint.span,
+    use super::JointKind::{Free, Prismatic, Revolute};
+    let negligible = |x: f64| x.abs() <= 1e-12 * scale.max(f64::MIN_POSITIVE) || x == 0.0;
+    let amount = |x: f64| {
+        if x == 0.0 {
+            "0 kg·m² in every configuration tried".to_owned()
+        } else {
             format!(
-                "the coordinate of joint `{}` has no inertia: nothing it moves has mass or inertia \
-                 along its motion, so the mass matrix M(q) is singular; add mass to the bodies it \
-                 moves or make the joint fixed",
-                joint.text
+                "at most {} kg·m² in the {} configurations tried, negligible next to the rest \
+                 of the mechanism",
+                computed(x),
+                measured.configurations
+            )
+        }
+    };
+    let mass = computed(measured.mass);
+    let (what, hint) = match kind {
+        Revolute { .. } if negligible(measured.moment) => (
+            format!(
+                "the bodies it moves (total mass {mass} kg) have a moment of inertia about its \
+                 axis of {}",
+                amount(measured.moment)
             ),
-        );
-    }
+            "put mass away from its axis or give the bodies inertia about it",
+        ),
+        Prismatic { .. } | Free if negligible(measured.mass) => (
+            format!("the bodies it moves have total mass {mass} kg"),
+            "add mass to the bodies it moves",
+        ),
+        Free if negligible(measured.moment) => (
+            format!(
+                "the bodies it moves (total mass {mass} kg) have a smallest principal moment of \
+                 inertia of {}",
+                amount(measured.moment)
+            ),
+            "give the bodies it moves inertia about every axis",
+        ),
+        _ => return,
+    };
+    d.error(
+        joint.span,
+        format!(
+            "the coordinate of joint `{}` has no inertia: {what}, so the mass matrix M(q) is \
+             singular; {hint}, or make the joint fixed",
+            joint.text
+        ),
+    );
 }
 
 /// Nominal-valued matrix helper for other modules.

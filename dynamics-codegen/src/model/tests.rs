@@ -143,6 +143,10 @@ fn coordinate_without_inertia_is_rejected() {
         e.contains("coordinate of joint `spin` has no inertia"),
         "{e}"
     );
+    assert!(
+        e.contains("total mass 1 kg) have a moment of inertia about its axis of 0 kg·m² in every configuration tried"),
+        "{e}"
+    );
     // The same point mass off the axis is fine.
     assert!(errors(quote! {
         struct S;
@@ -195,4 +199,132 @@ fn quarter_turns_are_exact() {
         "{r:?}"
     );
     assert_eq!(r, [[0.0, 0.0, -1.0], [1.0, 0.0, 0.0], [0.0, -1.0, 0.0]]);
+}
+
+#[test]
+fn coordinate_without_mass_says_what_was_measured() {
+    let e = errors(quote! {
+        struct S;
+        body a { mass: 0.0, shape: sphere(radius: 0.1) }
+        joint slide: prismatic(ground -> a) { axis: x }
+    });
+    assert_eq!(e.len(), 1, "{e:?}");
+    assert!(
+        e[0].contains("joint `slide` has no inertia: the bodies it moves have total mass 0 kg"),
+        "{e:?}"
+    );
+    let e = errors(quote! {
+        struct S;
+        body a { mass: 2.0, shape: point }
+        joint float: free(ground -> a);
+    });
+    assert_eq!(e.len(), 1, "{e:?}");
+    assert!(
+        e[0].contains(
+            "(total mass 2 kg) have a smallest principal moment of inertia of 0 kg·m² in every \
+             configuration tried"
+        ),
+        "{e:?}"
+    );
+}
+
+#[test]
+fn one_mistake_is_one_error() {
+    // A joint from a body to itself: not also "a second parent" nor "a cycle".
+    let e = errors(quote! {
+        struct S;
+        body bob { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+        joint pivot: revolute(ground -> bob) { axis: z }
+        joint hinge: revolute(bob -> bob) { axis: x }
+    });
+    assert_eq!(e, vec!["joint `hinge` attaches body `bob` to itself"]);
+    // Nor "not connected" when the self-joint is the body's only joint.
+    let e = errors(quote! {
+        struct S;
+        body bob { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+        joint hinge: revolute(bob -> bob) { axis: x }
+    });
+    assert_eq!(e, vec!["joint `hinge` attaches body `bob` to itself"]);
+    // A body named `ground`: not also "body `ground` is not connected to the ground".
+    let e = errors(quote! {
+        struct S;
+        body ground { mass: 1.0, shape: sphere(radius: 0.1) }
+        body bob { mass: 1.0, com: [0.0, -0.5, 0.0], shape: point }
+        joint pivot: revolute(ground -> bob) { axis: z }
+    });
+    assert_eq!(
+        e,
+        vec!["`ground` is the fixed world frame; a body cannot be named `ground`"]
+    );
+}
+
+#[test]
+fn duplicate_names_point_at_the_first_declaration() {
+    let e = errors(quote! {
+        struct S;
+        parameters: [k = 1.0, k = 2.0];
+        body link { mass: k, shape: point }
+        body link { mass: 1.0, shape: point }
+        joint j: revolute(ground -> link) { axis: z, at: [1.0, 0.0, 0.0] }
+    });
+    assert_eq!(
+        e,
+        vec![
+            "a body named `link` is already declared",
+            "body `link` is first declared here",
+            "a parameter named `k` is already declared",
+            "parameter `k` is first declared here",
+        ]
+    );
+}
+
+#[test]
+fn missing_fields_name_the_item_and_hint_in_code() {
+    let e = errors(quote! {
+        struct S;
+        body bob { com: [0.0, -0.5, 0.0] }
+        joint pivot: revolute(ground -> bob);
+    });
+    assert_eq!(
+        e,
+        vec![
+            "body `bob` has no `mass`; add for example `mass: 1.0`",
+            "body `bob` has no `inertia`; add for example `inertia: [[..], [..], [..]]`, or \
+             `shape: point` for a point mass",
+            "joint `pivot` has no `axis`; add for example `axis: z`",
+        ]
+    );
+}
+
+#[test]
+fn computed_numbers_have_six_significant_digits() {
+    use super::rules::computed;
+    assert_eq!(computed(0.30000000000000004), "0.3");
+    assert_eq!(computed(-0.09999999999999998), "-0.1");
+    assert_eq!(computed(3.0), "3");
+    assert_eq!(computed(-0.0), "0");
+    assert_eq!(computed(2.9999999999999996e-17), "3e-17");
+    assert_eq!(computed(1234567.0), "1.23457e6");
+    assert_eq!(computed(0.000123456789), "0.000123457");
+    assert_eq!(computed(f64::INFINITY), "inf");
+    let e = errors(quote! {
+        struct S;
+        parameters: [k = 0.3];
+        body bob { mass: 1.0, inertia: [[0.1, 0.2, 0.0], [0.2, 0.1, 0.0], [0.0, 0.0, 0.1]] }
+        joint pivot: revolute(ground -> bob) {
+            axis: z,
+            rotation: [[1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 1.0]],
+            armature: -0.1 * k,
+            damping: -0.25,
+        }
+    })
+    .join("\n");
+    assert!(
+        e.contains("principal moments are -0.1, 0.1, 0.3 kg·m²"),
+        "{e}"
+    );
+    assert!(e.contains("|RᵀR − 1| is 3 (at most 1e-6"), "{e}");
+    // A parameter at its nominal value is computed; a number as written stays as written.
+    assert!(e.contains("armature -0.03;"), "{e}");
+    assert!(e.contains("damping -0.25;"), "{e}");
 }

@@ -309,7 +309,14 @@ fn check_coordinates_have_inertia(
             _ => return false,
         }
     };
-    let mut best = vec![0.0_f64; bodies.len()];
+    let mut measured: Vec<rules::CoordinateInertia> = bodies
+        .iter()
+        .map(|_| rules::CoordinateInertia {
+            mass: 0.0,
+            moment: 0.0,
+            configurations: configurations.len(),
+        })
+        .collect();
     let mut scale = 0.0;
     for body in bodies {
         for part in &body.parts {
@@ -338,27 +345,25 @@ fn check_coordinates_have_inertia(
                         i_g + (Matrix3::identity() * c.norm_squared() - c * c.transpose()) * m;
                 }
             }
-            let measure = match body.joint.kind {
+            let moment = match body.joint.kind {
                 JointKind::Revolute { axis_in_joint } => {
                     let a = r_j * Vector3::from(axis_in_joint);
                     (a.transpose() * inertia_about_origin * a)[(0, 0)]
                 }
-                JointKind::Prismatic { .. } => mass,
-                JointKind::Free => {
-                    let smallest = rules::principal_moments(&inertia_about_origin)[0];
-                    mass.min(smallest)
-                }
+                JointKind::Prismatic { .. } => 0.0,
+                JointKind::Free => rules::principal_moments(&inertia_about_origin)[0],
             };
-            best[j] = best[j].max(measure);
+            measured[j].mass = mass;
+            measured[j].moment = measured[j].moment.max(moment);
         }
     }
-    for (j, body) in bodies.iter().enumerate() {
-        let joint = &resolved
+    for (body, measured) in bodies.iter().zip(&measured) {
+        let joint = resolved
             .joints
             .iter()
             .find(|rj| rj.name.text == body.joint.name);
         if let Some(joint) = joint {
-            rules::coordinate_has_inertia(&joint.name, joint.kind_span, best[j], scale, d);
+            rules::coordinate_has_inertia(&joint.name, &body.joint.kind, measured, scale, d);
         }
     }
 }

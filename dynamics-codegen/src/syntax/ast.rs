@@ -1,6 +1,61 @@
 //! The syntax tree of a mechanism declaration. Every node keeps its span.
 
-use proc_macro2::Span;
+use proc_macro2::{Punct, Spacing, Span, TokenStream, TokenTree};
+use quote::ToTokens;
+
+/// The tokens a node came from, as the spans of its first and last token.
+///
+/// On stable Rust `Span::join` returns `None`, so a single `Span` of `-2.0` or `1.0 / 0.0`
+/// would shrink to its first token. Keeping both ends lets an error cover the whole
+/// expression: [`SpanRange::error`] builds it as `syn::Error::new_spanned` does, and the
+/// compiler underlines everything from `first` to `last`.
+#[derive(Clone, Copy, Debug)]
+pub struct SpanRange {
+    /// The span of the first token.
+    pub first: Span,
+    /// The span of the last token (the same as `first` for a single token).
+    pub last: Span,
+}
+
+impl SpanRange {
+    /// From the first to the last token.
+    pub fn new(first: Span, last: Span) -> Self {
+        SpanRange { first, last }
+    }
+
+    /// The first and last tokens of a syntax node.
+    pub fn of(tokens: &impl ToTokens) -> Self {
+        let mut iter = tokens.to_token_stream().into_iter();
+        let first = iter.next().map_or_else(Span::call_site, |t| t.span());
+        let last = iter.last().map_or(first, |t| t.span());
+        SpanRange { first, last }
+    }
+
+    /// An error covering the whole range.
+    pub fn error(self, message: impl std::fmt::Display) -> syn::Error {
+        syn::Error::new_spanned(self, message)
+    }
+}
+
+impl From<Span> for SpanRange {
+    fn from(span: Span) -> Self {
+        SpanRange {
+            first: span,
+            last: span,
+        }
+    }
+}
+
+impl ToTokens for SpanRange {
+    /// Two placeholder tokens carrying the two spans, for `syn::Error::new_spanned`.
+    fn to_tokens(&self, tokens: &mut TokenStream) {
+        for span in [self.first, self.last] {
+            let mut punct = Punct::new('.', Spacing::Alone);
+            punct.set_span(span);
+            tokens.extend([TokenTree::Punct(punct)]);
+        }
+    }
+}
 
 /// A number as written: a compile-time constant, or a parameter times a constant.
 #[derive(Clone, Debug)]
@@ -8,7 +63,7 @@ pub struct Number {
     /// What the number is.
     pub value: NumberValue,
     /// The tokens it came from.
-    pub span: Span,
+    pub span: SpanRange,
 }
 
 /// The value of a [`Number`].
@@ -27,10 +82,10 @@ pub enum NumberValue {
 
 impl Number {
     /// A constant at a span.
-    pub fn constant(value: f64, span: Span) -> Self {
+    pub fn constant(value: f64, span: impl Into<SpanRange>) -> Self {
         Number {
             value: NumberValue::Constant(value),
-            span,
+            span: span.into(),
         }
     }
 }
@@ -50,7 +105,7 @@ pub struct Vector {
     /// The components.
     pub components: [Number; 3],
     /// The bracketed tokens.
-    pub span: Span,
+    pub span: SpanRange,
 }
 
 /// A 3×3 matrix `[[..], [..], [..]]`, by rows.
@@ -59,7 +114,7 @@ pub struct Matrix {
     /// The rows.
     pub rows: [[Number; 3]; 3],
     /// The bracketed tokens.
-    pub span: Span,
+    pub span: SpanRange,
 }
 
 /// A whole `mechanism!` invocation.
@@ -121,7 +176,7 @@ pub struct Body {
     /// How I_G is given.
     pub inertia: Option<InertiaForm>,
     /// The whole `{ ... }` block.
-    pub span: Span,
+    pub span: SpanRange,
 }
 
 /// The ways to give I_G, the inertia about the mass centre in the body frame.
@@ -137,7 +192,7 @@ pub enum InertiaForm {
         /// Orientation of the principal axes (identity when absent).
         rotation: Option<Rotation>,
         /// The whole form.
-        span: Span,
+        span: SpanRange,
     },
     /// `shape: rod(length: l, axis: y)` and the like: I_G computed from the mass.
     Shape(Shape),
@@ -149,7 +204,7 @@ pub struct Shape {
     /// Which solid.
     pub kind: ShapeKind,
     /// The whole form.
-    pub span: Span,
+    pub span: SpanRange,
 }
 
 /// The standard solids.
@@ -191,23 +246,23 @@ pub struct Axis {
     /// The direction, not normalized.
     pub direction: Vector,
     /// Where it was written.
-    pub span: Span,
+    pub span: SpanRange,
 }
 
 /// The ways to give a rotation.
 #[derive(Clone, Debug)]
 pub enum Rotation {
     /// `rpy(roll, pitch, yaw)`: R = Rz(yaw) Ry(pitch) Rx(roll), as in URDF.
-    Rpy([Number; 3], Span),
+    Rpy([Number; 3], SpanRange),
     /// `axis_angle([x, y, z], angle)`.
-    AxisAngle(Vector, Number, Span),
+    AxisAngle(Vector, Number, SpanRange),
     /// `[[..], [..], [..]]` by rows.
     Matrix(Matrix),
 }
 
 impl Rotation {
     /// The tokens the rotation came from.
-    pub fn span(&self) -> Span {
+    pub fn span(&self) -> SpanRange {
         match self {
             Rotation::Rpy(_, s) | Rotation::AxisAngle(_, _, s) => *s,
             Rotation::Matrix(m) => m.span,

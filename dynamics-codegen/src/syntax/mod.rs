@@ -19,7 +19,8 @@
 //! ```
 //!
 //! Every node keeps the span of the tokens it came from, so that later stages can point the
-//! user at them. Numbers are small constant expressions (`0.6 / 2.0`, `-pi / 2`, `1e-3`) or a
+//! user at them: a [`SpanRange`] (first and last token) for anything that may be more than one
+//! token, so that an error covers all of `-2.0` or `diag([..])` on stable Rust too. Numbers are small constant expressions (`0.6 / 2.0`, `-pi / 2`, `1e-3`) or a
 //! declared parameter scaled by a constant (`payload`, `0.5 * payload`).
 
 mod ast;

@@ -9,7 +9,6 @@ use proc_macro2::Span;
 use syn::ext::IdentExt;
 use syn::parse::{Parse, ParseStream};
 use syn::punctuated::Punctuated;
-use syn::spanned::Spanned;
 use syn::{braced, bracketed, parenthesized, Attribute, Expr, Ident, LitBool, LitStr, Token};
 
 impl Parse for Mechanism {
@@ -36,11 +35,14 @@ impl Parse for Mechanism {
                 input.parse::<Token![struct]>()?;
                 let name: Ident = input.parse()?;
                 input.parse::<Token![;]>()?;
-                if header.is_some() {
-                    return Err(syn::Error::new(
-                        name.span(),
-                        "the mechanism's type is declared twice",
+                if let Some((_, _, first)) = &header {
+                    let mut error =
+                        syn::Error::new(name.span(), "the mechanism's type is declared twice");
+                    error.combine(syn::Error::new(
+                        first.span(),
+                        format!("the mechanism's type `{first}` is first declared here"),
                     ));
+                    return Err(error);
                 }
                 header = Some((docs, visibility, name));
                 continue;
@@ -113,8 +115,8 @@ fn parse_docs(input: ParseStream) -> syn::Result<Vec<String>> {
                 }
             }
             _ => {
-                return Err(syn::Error::new(
-                    attr.span(),
+                return Err(syn::Error::new_spanned(
+                    &attr,
                     "only doc comments are allowed here",
                 ))
             }
@@ -172,7 +174,7 @@ pub(crate) fn parse_number(input: ParseStream) -> syn::Result<Number> {
 fn number_from_expr(expr: &Expr) -> syn::Result<Number> {
     Ok(Number {
         value: evaluate(expr)?,
-        span: expr.span(),
+        span: SpanRange::of(expr),
     })
 }
 
@@ -181,8 +183,8 @@ fn number_from_expr(expr: &Expr) -> syn::Result<Number> {
 fn evaluate(expr: &Expr) -> syn::Result<NumberValue> {
     use NumberValue::{Constant, Parameter};
     let not_a_number = || {
-        syn::Error::new(
-            expr.span(),
+        syn::Error::new_spanned(
+            expr,
             "expected a number: a literal, `pi`, a parameter, or + - * / of these",
         )
     };
@@ -214,8 +216,8 @@ fn evaluate(expr: &Expr) -> syn::Result<NumberValue> {
         Expr::Binary(b) => {
             let (l, r) = (evaluate(&b.left)?, evaluate(&b.right)?);
             let only_scaled = || {
-                syn::Error::new(
-                    expr.span(),
+                syn::Error::new_spanned(
+                    expr,
                     "a parameter can only be multiplied or divided by a constant here",
                 )
             };
@@ -256,17 +258,14 @@ fn evaluate(expr: &Expr) -> syn::Result<NumberValue> {
 pub(crate) fn parse_vector(input: ParseStream) -> syn::Result<Vector> {
     let content;
     let bracket = bracketed!(content in input);
-    let span = bracket.span.join();
+    let span = SpanRange::from(bracket.span.join());
     let exprs = Punctuated::<Expr, Token![,]>::parse_terminated(&content)?;
     let numbers = exprs
         .iter()
         .map(number_from_expr)
         .collect::<syn::Result<Vec<_>>>()?;
     let components: [Number; 3] = numbers.try_into().map_err(|v: Vec<Number>| {
-        syn::Error::new(
-            span,
-            format!("expected 3 numbers `[x, y, z]`, found {}", v.len()),
-        )
+        span.error(format!("expected 3 numbers `[x, y, z]`, found {}", v.len()))
     })?;
     Ok(Vector { components, span })
 }
@@ -275,7 +274,7 @@ pub(crate) fn parse_vector(input: ParseStream) -> syn::Result<Vector> {
 fn parse_matrix(input: ParseStream) -> syn::Result<Matrix> {
     let content;
     let bracket = bracketed!(content in input);
-    let span = bracket.span.join();
+    let span = SpanRange::from(bracket.span.join());
     let mut rows = Vec::new();
     while !content.is_empty() {
         rows.push(parse_vector(&content)?.components);
@@ -285,13 +284,10 @@ fn parse_matrix(input: ParseStream) -> syn::Result<Matrix> {
         content.parse::<Token![,]>()?;
     }
     let rows: [[Number; 3]; 3] = rows.try_into().map_err(|v: Vec<[Number; 3]>| {
-        syn::Error::new(
-            span,
-            format!(
-                "expected a 3×3 matrix given by 3 rows, found {} rows",
-                v.len()
-            ),
-        )
+        span.error(format!(
+            "expected a 3×3 matrix given by 3 rows, found {} rows",
+            v.len()
+        ))
     })?;
     Ok(Matrix { rows, span })
 }
@@ -308,8 +304,8 @@ fn parse_axis(input: ParseStream) -> syn::Result<Axis> {
     let minus: Option<Token![-]> = input.parse()?;
     let ident: Ident = input.parse()?;
     let span = match &minus {
-        Some(m) => m.span.join(ident.span()).unwrap_or(ident.span()),
-        None => ident.span(),
+        Some(m) => SpanRange::new(m.span, ident.span()),
+        None => SpanRange::from(ident.span()),
     };
     let sign = if minus.is_some() { -1.0 } else { 1.0 };
     let unit = match ident.to_string().as_str() {
@@ -338,13 +334,13 @@ fn parse_rotation(input: ParseStream) -> syn::Result<Rotation> {
     let form: Ident = input.parse()?;
     let content;
     let paren = parenthesized!(content in input);
-    let span = form.span().join(paren.span.join()).unwrap_or(form.span());
+    let span = SpanRange::new(form.span(), paren.span.join());
     match form.to_string().as_str() {
         "rpy" => {
             let exprs = Punctuated::<Expr, Token![,]>::parse_terminated(&content)?;
             let numbers = exprs.iter().map(number_from_expr).collect::<syn::Result<Vec<_>>>()?;
             let angles: [Number; 3] = numbers.try_into().map_err(|_| {
-                syn::Error::new(span, "expected `rpy(roll, pitch, yaw)` with three angles in radians")
+                span.error("expected `rpy(roll, pitch, yaw)` with three angles in radians")
             })?;
             Ok(Rotation::Rpy(angles, span))
         }
@@ -389,12 +385,12 @@ fn parse_shape(input: ParseStream) -> syn::Result<Shape> {
     if name == "point" {
         return Ok(Shape {
             kind: ShapeKind::Point,
-            span: form.span(),
+            span: SpanRange::from(form.span()),
         });
     }
     let content;
     let paren = parenthesized!(content in input);
-    let span = form.span().join(paren.span.join()).unwrap_or(form.span());
+    let span = SpanRange::new(form.span(), paren.span.join());
     let kind = match name.as_str() {
         "rod" => {
             expect_arg(&content, "length")?;
@@ -453,7 +449,7 @@ fn parse_inertia(input: ParseStream) -> syn::Result<InertiaForm> {
     let form: Ident = input.parse()?;
     let content;
     let paren = parenthesized!(content in input);
-    let span = form.span().join(paren.span.join()).unwrap_or(form.span());
+    let span = SpanRange::new(form.span(), paren.span.join());
     match form.to_string().as_str() {
         "diag" => Ok(InertiaForm::Principal {
             moments: parse_vector(&content)?,
@@ -488,19 +484,21 @@ fn parse_inertia(input: ParseStream) -> syn::Result<InertiaForm> {
 fn parse_fields(
     input: ParseStream,
     mut field: impl FnMut(&Ident, ParseStream) -> syn::Result<bool>,
-) -> syn::Result<Span> {
+) -> syn::Result<SpanRange> {
     let content;
     let brace = braced!(content in input);
-    let mut seen: Vec<String> = Vec::new();
+    let mut seen: Vec<Ident> = Vec::new();
     while !content.is_empty() {
         let name: Ident = content.parse()?;
         content.parse::<Token![:]>()?;
         let text = name.to_string();
-        if seen.contains(&text) {
-            return Err(syn::Error::new(
-                name.span(),
-                format!("`{text}` is given twice"),
+        if let Some(first) = seen.iter().find(|s| **s == text) {
+            let mut error = syn::Error::new(name.span(), format!("`{text}` is given twice"));
+            error.combine(syn::Error::new(
+                first.span(),
+                format!("`{text}` is first given here"),
             ));
+            return Err(error);
         }
         if !field(&name, &content)? {
             return Err(syn::Error::new(
@@ -508,10 +506,10 @@ fn parse_fields(
                 format!("unknown field `{text}`"),
             ));
         }
-        seen.push(text);
+        seen.push(name);
         comma_unless_end(&content)?;
     }
-    Ok(brace.span.join())
+    Ok(SpanRange::from(brace.span.join()))
 }
 
 /// `body name { mass: .., com: .., inertia: .. | shape: .. }`.
@@ -720,6 +718,25 @@ mod tests {
         assert!(e.to_string().contains("pub struct Name"), "{e}");
         let e = parse(quote! { struct P; joint j: hinge(ground -> b); }).expect_err("kind");
         assert!(e.to_string().contains("unknown joint kind `hinge`"), "{e}");
+    }
+
+    #[test]
+    fn repetitions_point_at_the_first_occurrence_too() {
+        let e = parse(quote! { struct P; body b { mass: 1.0, mass: 2.0 } }).expect_err("twice");
+        let messages: Vec<String> = e.into_iter().map(|e| e.to_string()).collect();
+        assert_eq!(
+            messages,
+            vec!["`mass` is given twice", "`mass` is first given here"]
+        );
+        let e = parse(quote! { struct P; struct Q; }).expect_err("two types");
+        let messages: Vec<String> = e.into_iter().map(|e| e.to_string()).collect();
+        assert_eq!(
+            messages,
+            vec![
+                "the mechanism's type is declared twice",
+                "the mechanism's type `P` is first declared here"
+            ]
+        );
     }
 
     #[test]
