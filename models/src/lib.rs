@@ -4,5 +4,6 @@
 pub mod anchors;
 pub mod puma560;
 pub mod quadruped;
+pub mod scenes;
 pub mod seed;
 pub mod urdf_anchors;
