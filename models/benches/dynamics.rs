@@ -454,6 +454,7 @@ bench_model!(
     [
         inverse_dynamics,
         mass_matrix,
+        forward_dynamics,
         kinetic_energy,
         potential_energy,
     ]
