@@ -2,13 +2,21 @@
 //!
 //! For each model and 40 random states: every generated output equals the runtime
 //! reference within 1e-12 · (1 + max |value|) in f64; forward dynamics within
-//! 1e-12 · cond(M) · (1 + max |value|); and f32 within 1e-4 (scaled likewise).
+//! 1e-12 · cond(M) · (1 + max |value|); and every output in f32 within 1e-4 (scaled
+//! likewise), against the reference at the inputs rounded to f32.
+
+#[macro_use]
+mod generated_support;
 
 use dynamics_runtime::reference::Wrench;
 use dynamics_runtime::{Mechanism, Model, Reference};
 use dynamics_tests::random::SplitMix;
 use dynamics_tests::{max_abs_diff, tolerance_scale};
+use generated_support::{arr, check_against_reference, Function, Inputs, UnderTest};
 use models::anchors::{DoublePendulum, Panda, Pendulum, Planar3, Ur5};
+use models::puma560::Puma560;
+use models::quadruped::Quadruped;
+use models::scenes::{PlanarArm, PlanarArmGravityOnly, PlanarArmIn3d};
 use models::seed::{EccentricRotor, FallingRod, GyroscopicBody};
 use models::urdf_anchors::{DoublePendulumUrdf, PandaUrdf, PendulumUrdf, Planar3Urdf, Ur5Urdf};
 use nalgebra::DMatrix;
@@ -40,6 +48,24 @@ fn assert_close(what: &str, model: &str, generated: &[f64], reference: &[f64], t
         "{model}: {what}: generated {generated:?} vs reference {reference:?} (error {error:e}, allowed {:e})",
         tolerance * scale
     );
+}
+
+/// A mechanism without parameters or loads, for [`check_against_reference`].
+fn under_test<'a>(
+    name: &'a str,
+    model: &'a Model,
+    f64: Vec<Function<f64>>,
+    f32: Vec<Function<f32>>,
+) -> UnderTest<'a> {
+    UnderTest {
+        name,
+        model: Box::new(|_: &[f64]| model.clone()),
+        num_parameters: 0,
+        loads: &[],
+        num_load_inputs: 0,
+        f64,
+        f32,
+    }
 }
 
 fn flatten<const N: usize>(m: &[[f64; N]]) -> Vec<f64> {
@@ -105,13 +131,16 @@ macro_rules! all_outputs_match {
                 let w_ref: Vec<f64> = wrenches.iter().flat_map(|w| w.to_vector6().iter().copied().collect::<Vec<_>>()).collect();
                 assert_close("joint_reactions", name, &flatten(&<$m>::joint_reactions(&q, &v, &a)), &w_ref, 1e-12);
 
-                // f32: the same functions, single precision, against the f64 reference.
-                let q32: [f32; NQ] = q.map(|x| x as f32);
-                let (v32, a32) = (v.map(|x| x as f32), a.map(|x| x as f32));
-                reference.inverse_dynamics(&q, &v, &a, None, &mut out).expect("sizes");
-                let id32: Vec<f64> = <$m>::inverse_dynamics(&q32, &v32, &a32).iter().map(|&x| f64::from(x)).collect();
-                assert_close("inverse_dynamics (f32)", name, &id32, &out, 1e-4);
             }
+            // Every function again, through one loop, in f64 and in f32 (against the
+            // reference at the inputs rounded to f32).
+            let outputs = under_test(
+                name,
+                &model,
+                generated_functions!(f64, $m, p: no, loads: no),
+                generated_functions!(f32, $m, p: no, loads: no),
+            );
+            check_against_reference(&outputs, STATES, 0x5eed ^ NQ as u64).print(name);
         }
     )*};
 }
@@ -128,6 +157,9 @@ all_outputs_match! {
     planar3_urdf: Planar3Urdf,
     ur5_urdf: Ur5Urdf,
     panda_urdf: PandaUrdf,
+    puma560: Puma560,
+    planar_arm: PlanarArm,
+    planar_arm_in_3d: PlanarArmIn3d,
 }
 
 #[test]
@@ -170,6 +202,16 @@ fn gyroscopic_body_free_flyer() {
             1e-12,
         );
     }
+    // Every output it generates, in f64 and f32 (forward dynamics and potential energy too).
+    let outputs = under_test(
+        "GyroscopicBody",
+        &model,
+        generated_functions!(f64, GyroscopicBody, p: no, loads: no,
+            [inverse_dynamics, mass_matrix, forward_dynamics, kinetic_energy, potential_energy]),
+        generated_functions!(f32, GyroscopicBody, p: no, loads: no,
+            [inverse_dynamics, mass_matrix, forward_dynamics, kinetic_energy, potential_energy]),
+    );
+    check_against_reference(&outputs, STATES, 7).print("GyroscopicBody");
 }
 
 #[test]
@@ -193,6 +235,16 @@ fn eccentric_rotor_reactions() {
             1e-12,
         );
     }
+    // Every output it generates, in f64 and f32.
+    let outputs = under_test(
+        "EccentricRotor",
+        &model,
+        generated_functions!(f64, EccentricRotor, p: no, loads: no,
+            [inverse_dynamics, mass_matrix, kinetic_energy, potential_energy, joint_reactions]),
+        generated_functions!(f32, EccentricRotor, p: no, loads: no,
+            [inverse_dynamics, mass_matrix, kinetic_energy, potential_energy, joint_reactions]),
+    );
+    check_against_reference(&outputs, STATES, 11).print("EccentricRotor");
     // The seed's inertia-force scale: m e ω² = 20 N at 100 rad/s, 80 N at 200 rad/s.
     for (omega, expected) in [(100.0_f64, 20.0_f64), (200.0, 80.0)] {
         let w = EccentricRotor::joint_reactions(&[0.0_f64], &[omega], &[0.0]);
@@ -265,4 +317,45 @@ fn nalgebra_wrappers_match_the_array_functions() {
         Ur5::kinetic_energy_na(&q, &v),
         Ur5::kinetic_energy(&q.into(), &v.into())
     );
+}
+
+#[test]
+fn planar_arm_gravity_only() {
+    let model = PlanarArmGravityOnly::model();
+    let outputs = under_test(
+        "PlanarArmGravityOnly",
+        &model,
+        generated_functions!(f64, PlanarArmGravityOnly, p: no, loads: no, [gravity]),
+        generated_functions!(f32, PlanarArmGravityOnly, p: no, loads: no, [gravity]),
+    );
+    check_against_reference(&outputs, STATES, 13).print("PlanarArmGravityOnly");
+}
+
+/// The quadruped's loads, as `models/src/quadruped.rs` declares them: a force on each
+/// shin at its foot.
+const QUADRUPED_LOADS: [(&str, &str, [f64; 3]); 4] = [
+    ("shin_fl", "force", [0.0, 0.0, -0.2]),
+    ("shin_fr", "force", [0.0, 0.0, -0.2]),
+    ("shin_hl", "force", [0.0, 0.0, -0.2]),
+    ("shin_hr", "force", [0.0, 0.0, -0.2]),
+];
+
+#[test]
+fn quadruped_every_output_with_foot_forces() {
+    assert_eq!(
+        Quadruped::LOAD_NAMES,
+        ["foot_fl", "foot_fr", "foot_hl", "foot_hr"]
+    );
+    let model = Quadruped::model();
+    let outputs = UnderTest {
+        loads: &QUADRUPED_LOADS,
+        num_load_inputs: Quadruped::NUM_LOAD_INPUTS,
+        ..under_test(
+            "Quadruped",
+            &model,
+            generated_functions!(f64, Quadruped, p: no, loads: yes),
+            generated_functions!(f32, Quadruped, p: no, loads: yes),
+        )
+    };
+    check_against_reference(&outputs, STATES, 17).print("Quadruped");
 }
