@@ -1,0 +1,251 @@
+#!/usr/bin/env bash
+# The generated code against Pinocchio, side by side: one table of ns/call and speedups.
+#
+#   bash models/benches/pinocchio/compare.sh [--quick] [--models "ur5 panda quadruped"]
+#
+# Needs Python >= 3.9 (with venv), g++ (C++17) and the Rust toolchain, and the network for
+# the first run. Steps:
+#   1. installs Pinocchio from PyPI (`pin`, which ships its C++ headers, and `cmeel-eigen`
+#      for Eigen's) into ./venv, next to this script;
+#   2. builds ./build/timing from timing.cpp once (header-only Pinocchio, -O3 -march=native
+#      -DNDEBUG, the compile definitions Pinocchio's CMake package gives its users), and
+#      rebuilds it only when the source, the flags, the compiler or Pinocchio change;
+#   3. writes the quadruped and its states with `cargo run --example export_model`;
+#   4. runs Pinocchio (./build/timing) and the project's criterion benchmark
+#      (`cargo bench -p models --bench dynamics`) on the same models and the same states:
+#      the 20 samples of tests/data/pinocchio/<model>.json, and of quadruped.json here.
+#      Both sides make one call per state, the states in turn, on one thread, and report
+#      the median over repetitions; the script checks that both read bit-identical states;
+#   5. prints the table (also written to build/comparison.md).
+# Pinocchio's crba and aba are timed in both of its conventions and the faster one is
+# compared. The quadruped's foot loads are zero for the generated code and Pinocchio gets no
+# external forces. Timings of a busy machine are noisy: the load average is printed with
+# the table. --quick shortens both sides' measurements (for trying the script, not for
+# figures).
+set -euo pipefail
+
+HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+ROOT="$(cd "$HERE/../../.." && pwd)"
+PIN_VERSION="${PIN_VERSION:-4.1.0}"
+EIGEN_VERSION="${EIGEN_VERSION:-3.4.1}"
+MODELS="pendulum double_pendulum planar3 ur5 panda quadruped"
+QUICK=0
+BASELINE=compare_pinocchio
+
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --quick) QUICK=1 ;;
+    --models) MODELS="$2"; shift ;;
+    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
+    *) echo "compare.sh: unknown argument $1 (try --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+
+STEP="starting"
+fail() { echo "compare.sh: FAILED while $STEP${1:+: $1}" >&2; exit 1; }
+trap 'fail "command exited with status $? (see the output above)"' ERR
+step() { STEP="$1"; echo "==> $1" >&2; }
+
+# ---- 0. tools -----------------------------------------------------------------------------
+step "checking the tools (python3 with venv, g++, cargo)"
+PYTHON=""
+for candidate in python3.11 python3.12 python3.13 python3.10 python3.9 python3; do
+  if command -v "$candidate" >/dev/null 2>&1 &&
+     "$candidate" -c 'import sys; sys.exit(0 if sys.version_info >= (3, 9) else 1)' 2>/dev/null; then
+    PYTHON="$candidate"; break
+  fi
+done
+[ -n "$PYTHON" ] || fail "no Python >= 3.9 found (python3.11 is what this was written with)"
+command -v g++ >/dev/null 2>&1 || fail "g++ not found (a C++17 compiler is needed)"
+command -v cargo >/dev/null 2>&1 || fail "cargo not found (install the Rust toolchain)"
+
+# ---- 1. Pinocchio ---------------------------------------------------------------------------
+step "installing Pinocchio $PIN_VERSION (pin) and Eigen $EIGEN_VERSION (cmeel-eigen) into $HERE/venv"
+VENV="$HERE/venv"
+if [ ! -x "$VENV/bin/python" ]; then
+  "$PYTHON" -m venv "$VENV" ||
+    fail "$PYTHON -m venv failed (on Debian/Ubuntu: apt-get install python3-venv)"
+fi
+WANT="pin==$PIN_VERSION cmeel-eigen==$EIGEN_VERSION"
+if [ "$(cat "$VENV/.installed" 2>/dev/null || true)" != "$WANT" ]; then
+  "$VENV/bin/python" -m pip install -q --upgrade pip || fail "pip could not upgrade itself (network?)"
+  # shellcheck disable=SC2086
+  "$VENV/bin/python" -m pip install -q $WANT || fail "pip install $WANT failed (network? Python version?)"
+  echo "$WANT" > "$VENV/.installed"
+fi
+PREFIX="$("$VENV/bin/python" -c 'import cmeel, os; print(os.path.join(os.path.dirname(cmeel.__path__[0]), "cmeel.prefix"))')" ||
+  fail "cannot locate the cmeel prefix of the venv"
+[ -f "$PREFIX/include/pinocchio/config.hpp" ] || fail "no Pinocchio headers under $PREFIX/include"
+[ -d "$PREFIX/include/eigen3/Eigen" ] || fail "no Eigen headers under $PREFIX/include/eigen3"
+
+# ---- 2. the timing program ------------------------------------------------------------------
+step "building the Pinocchio timing program (build/timing)"
+mkdir -p "$HERE/build"
+# The definitions are those of the pinocchio::pinocchio_headers target in Pinocchio's CMake
+# package (lib/cmake/pinocchio/pinocchioTargets.cmake).
+CXXFLAGS=(-std=c++17 -O3 -march=native -DNDEBUG
+          -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30
+          -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -DBOOST_FUSION_INVOKE_MAX_ARITY=12
+          -isystem "$PREFIX/include" -isystem "$PREFIX/include/eigen3")
+STAMP="$( { cat "$HERE/timing.cpp"; echo "${CXXFLAGS[*]}"; g++ --version | head -1; echo "$WANT"; } | sha256sum | cut -c1-16)"
+if [ ! -x "$HERE/build/timing" ] || [ "$(cat "$HERE/build/timing.stamp" 2>/dev/null || true)" != "$STAMP" ]; then
+  echo "    g++ ${CXXFLAGS[*]} timing.cpp   (about 2 minutes)" >&2
+  g++ "${CXXFLAGS[@]}" "$HERE/timing.cpp" -o "$HERE/build/timing.tmp" 2> "$HERE/build/timing.log" ||
+    { tail -30 "$HERE/build/timing.log" >&2; fail "g++ could not build timing.cpp (log: build/timing.log)"; }
+  mv "$HERE/build/timing.tmp" "$HERE/build/timing"
+  echo "$STAMP" > "$HERE/build/timing.stamp"
+fi
+
+# ---- 3. the quadruped's file ------------------------------------------------------------------
+cd "$ROOT"
+if [[ " $MODELS " == *" quadruped "* ]]; then
+  step "exporting the quadruped and its states (cargo run --release -p models --example export_model)"
+  cargo run --release -q -p models --example export_model -- quadruped --out "$HERE/quadruped.json" >&2
+fi
+
+FILES=()
+FILTER=()
+for m in $MODELS; do
+  case "$m" in
+    pendulum) f=tests/data/pinocchio/pendulum.json; n=Pendulum ;;
+    double_pendulum) f=tests/data/pinocchio/double_pendulum.json; n=DoublePendulum ;;
+    planar3) f=tests/data/pinocchio/planar3.json; n=Planar3 ;;
+    ur5) f=tests/data/pinocchio/ur5.json; n=Ur5 ;;
+    panda) f=tests/data/pinocchio/panda.json; n=Panda ;;
+    quadruped) f="$HERE/quadruped.json"; n=Quadruped ;;
+    *) fail "unknown model $m (pendulum double_pendulum planar3 ur5 panda quadruped)" ;;
+  esac
+  FILES+=("$f")
+  FILTER+=("$n")
+done
+REGEX="^($(IFS='|'; echo "${FILTER[*]}"))/(inverse_dynamics|mass_matrix|bias|gravity|forward_dynamics|coriolis_matrix)/generated\$"
+
+if [ "$QUICK" = 1 ]; then
+  PIN_ARGS=(--reps 5 --min-rep-ms 20 --warmup-ms 50)
+  CRIT_ARGS=(--warm-up-time 0.3 --measurement-time 0.5 --sample-size 10)
+else
+  PIN_ARGS=(--reps 21 --min-rep-ms 100 --warmup-ms 300)
+  CRIT_ARGS=(--warm-up-time 1 --measurement-time 3 --sample-size 21)
+fi
+
+# ---- 4. both sides ----------------------------------------------------------------------------
+step "building the Rust benchmark (cargo bench -p models --bench dynamics --no-run)"
+cargo bench -q -p models --bench dynamics --no-run 2> "$HERE/build/cargo.log" ||
+  { tail -30 "$HERE/build/cargo.log" >&2; fail "the benchmark does not build (log: build/cargo.log)"; }
+TARGET="$(cargo metadata --format-version 1 --no-deps |
+          "$VENV/bin/python" -c 'import json, sys; print(json.load(sys.stdin)["target_directory"])')"
+CRITERION="$TARGET/criterion"
+if [ -d "$CRITERION" ]; then
+  find "$CRITERION" -type d -name "$BASELINE" -prune -exec rm -rf {} +
+fi
+
+LOAD_BEFORE="$(cut -d' ' -f1-3 /proc/loadavg)"
+step "timing Pinocchio (load average $LOAD_BEFORE)"
+"$HERE/build/timing" "${PIN_ARGS[@]}" "${FILES[@]}" > "$HERE/build/pinocchio.tsv" ||
+  fail "the timing program failed (its message is above)"
+LOAD_MIDDLE="$(cut -d' ' -f1-3 /proc/loadavg)"
+step "timing the generated code (load average $LOAD_MIDDLE)"
+cargo bench -q -p models --bench dynamics -- "${CRIT_ARGS[@]}" --save-baseline "$BASELINE" "$REGEX" \
+  > "$HERE/build/criterion.log" 2>&1 ||
+  { tail -30 "$HERE/build/criterion.log" >&2; fail "cargo bench failed (log: build/criterion.log)"; }
+LOAD_AFTER="$(cut -d' ' -f1-3 /proc/loadavg)"
+
+# ---- 5. the table -------------------------------------------------------------------------------
+step "joining the results"
+CPU="$(LC_ALL=C lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1)"
+"$VENV/bin/python" - "$HERE/build" "$CRITERION" "$BASELINE" "$CPU" "$(nproc)" \
+  "$LOAD_BEFORE" "$LOAD_MIDDLE" "$LOAD_AFTER" "$QUICK" "$(rustc --version)" "$(g++ --version | head -1)" \
+  $MODELS <<'PYTHON' || fail "could not join the two sides' results"
+import json, os, re, sys
+
+build, criterion, baseline, cpu, cores, load0, load1, load2, quick, rustc, gxx, *models = sys.argv[1:]
+NAMES = {"pendulum": "Pendulum", "double_pendulum": "DoublePendulum", "planar3": "Planar3",
+         "ur5": "Ur5", "panda": "Panda", "quadruped": "Quadruped"}
+LABELS = {"pendulum": "pendulum", "double_pendulum": "double pendulum", "planar3": "planar 3R",
+          "ur5": "UR5", "panda": "Panda", "quadruped": "quadruped"}
+# Pinocchio algorithm, the faster of its conventions where it has two, ours.
+ALGORITHMS = [("rnea", ["rnea"], "inverse_dynamics"),
+              ("crba", ["crba", "crba_world"], "mass_matrix"),
+              ("nonLinearEffects", ["nonLinearEffects"], "bias"),
+              ("computeGeneralizedGravity", ["computeGeneralizedGravity"], "gravity"),
+              ("aba", ["aba", "aba_world"], "forward_dynamics"),
+              ("computeCoriolisMatrix", ["computeCoriolisMatrix"], "coriolis_matrix")]
+# The issue's targets (speedup = Pinocchio / ours) for the robots.
+TARGETS = {"rnea": {"ur5": 8, "panda": 8, "quadruped": 5}, "crba": 5, "aba": 6,
+           "computeGeneralizedGravity": 10, "computeCoriolisMatrix": 5}
+ROBOTS = {"ur5", "panda", "quadruped"}
+
+pin, pin_states, header = {}, {}, ""
+for line in open(os.path.join(build, "pinocchio.tsv")):
+    f = line.rstrip("\n").split("\t")
+    if line.startswith("#"):
+        header = line[1:].strip()
+    elif f[0] == "states":
+        pin_states[f[1]] = f[3]
+    elif f[0] == "time":
+        pin[(f[1], f[2])] = float(f[3])
+
+ours_states = {}
+log = open(os.path.join(build, "criterion.log")).read()
+for m in re.finditer(r"^states (\w+) (\d+) ([0-9a-f]{16})", log, re.M):
+    ours_states[m.group(1)] = m.group(3)
+
+ours = {}
+for directory, _, files in os.walk(criterion):
+    if os.path.basename(directory) == baseline and "estimates.json" in files:
+        bench = json.load(open(os.path.join(directory, "benchmark.json")))
+        estimates = json.load(open(os.path.join(directory, "estimates.json")))
+        ours[bench["full_id"]] = estimates["median"]["point_estimate"]
+
+problems = []
+for m in models:
+    a, b = pin_states.get(m), ours_states.get(NAMES[m])
+    if a is None or b is None or a != b:
+        problems.append(f"{m}: the states differ (Pinocchio {a}, Rust {b})")
+rows, verdicts = [], []
+for m in models:
+    for algorithm, variants, function in ALGORITHMS:
+        times = [(pin[(m, v)], v) for v in variants if (m, v) in pin]
+        key = f"{NAMES[m]}/{function}/generated"
+        if not times or key not in ours:
+            problems.append(f"{m} {algorithm}: no timing ({'Pinocchio' if not times else key})")
+            continue
+        p, variant = min(times)
+        o = ours[key]
+        speedup = p / o
+        target = TARGETS.get(algorithm)
+        if isinstance(target, dict):
+            target = target.get(m)
+        if m not in ROBOTS:
+            target = None
+        verdict = "" if target is None else ("met" if speedup >= target else "NOT met")
+        if target is not None:
+            verdicts.append((m, algorithm, speedup, target))
+        note = " (WORLD)" if variant.endswith("_world") else ""
+        rows.append((LABELS[m], f"{algorithm}{note}", function, o, p, speedup,
+                     "" if target is None else f"≥ {target}×", verdict))
+if problems:
+    print("compare.sh: " + "; ".join(problems), file=sys.stderr)
+    sys.exit(1)
+
+out = []
+out.append(f"Machine: {cpu}, {cores} cores; load average (1, 5, 15 min) before Pinocchio {load0}, "
+           f"before Rust {load1}, after {load2}.")
+out.append(f"{header}; {gxx}. Generated code: {rustc}, criterion median of flat samples.")
+if quick == "1":
+    out.append("QUICK RUN (--quick): short measurements, not for figures.")
+out.append("")
+out.append("| model | Pinocchio | ours | ours ns | Pinocchio ns | speedup | target | |")
+out.append("| --- | --- | --- | ---: | ---: | ---: | ---: | --- |")
+for label, algorithm, function, o, p, s, target, verdict in rows:
+    out.append(f"| {label} | {algorithm} | {function} | {o:.1f} | {p:.1f} | {s:.1f}× | {target} | {verdict} |")
+out.append("")
+out.append("speedup = Pinocchio ns / ours ns (medians, same states, one thread). crba and aba: the faster of")
+out.append("Pinocchio's LOCAL and WORLD conventions. Quadruped: foot loads zero, no external forces in Pinocchio.")
+text = "\n".join(out)
+print(text)
+open(os.path.join(build, "comparison.md"), "w").write(text + "\n")
+met = sum(1 for _, _, s, t in verdicts if s >= t)
+print(f"\ntargets met: {met} of {len(verdicts)}")
+PYTHON
