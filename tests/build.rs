@@ -355,15 +355,6 @@ fn tree(name: &str, spec: &Spec, rng: &mut Rng) -> String {
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
-    // WORKAROUND (a generator bug, reported): with debug info (the default of `cargo test`),
-    // rustc overflows its stack and dies with SIGSEGV in LLVM's DWARF lexical-scope
-    // construction (`DwarfCompileUnit::createAndAddScopeChildren`, one nested scope per
-    // `let`) on a generated function, or split piece, of more than about 3000 `let`s. The
-    // split threshold is 3000 live nodes, and the constants and inputs each piece re-reads
-    // push pieces past it: the 18-joint tree's mass matrix has a piece of 3223 `let`s.
-    // A larger stack for rustc (the compiler reads RUST_MIN_STACK) compiles them; remove
-    // this once the generated pieces stay well below that depth.
-    println!("cargo:rustc-env=RUST_MIN_STACK=67108864");
     let out = std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR");
     let out = Path::new(&out);
     let mut rng = Rng(0x7e57_7ee5_2026);

@@ -63,8 +63,11 @@ use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::{BTreeSet, HashMap};
 
-/// The default [`FunctionSpec::split_threshold`].
-pub const DEFAULT_SPLIT_THRESHOLD: usize = 3000;
+/// The default [`FunctionSpec::split_threshold`]: 1500 live nodes. Each piece also
+/// re-creates the constants and inputs it reads, so pieces come out somewhat longer; at this
+/// threshold they stay well below ~3000 `let`s, where rustc (LLVM's debug-info scopes, one
+/// per `let`, walked recursively) overflows its stack in debug builds.
+pub const DEFAULT_SPLIT_THRESHOLD: usize = 1500;
 
 /// One argument of the emitted function: `name: &[T; len]`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

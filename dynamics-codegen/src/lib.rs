@@ -129,4 +129,65 @@ mod tests {
             assert!(text.contains(expected), "missing {expected:?} in\n{text}");
         }
     }
+
+    /// Statements in the body of every function (and nested piece) of the emitted code.
+    fn body_lengths(items: &[syn::Item], out: &mut Vec<usize>) {
+        for item in items {
+            match item {
+                syn::Item::Fn(f) => {
+                    out.push(f.block.stmts.len());
+                    let nested: Vec<syn::Item> = f
+                        .block
+                        .stmts
+                        .iter()
+                        .filter_map(|s| match s {
+                            syn::Stmt::Item(i) => Some(i.clone()),
+                            _ => None,
+                        })
+                        .collect();
+                    body_lengths(&nested, out);
+                }
+                syn::Item::Impl(i) => {
+                    let fns: Vec<syn::Item> = i
+                        .items
+                        .iter()
+                        .filter_map(|ii| match ii {
+                            syn::ImplItem::Fn(f) => Some(syn::Item::Fn(syn::ItemFn {
+                                attrs: f.attrs.clone(),
+                                vis: f.vis.clone(),
+                                sig: f.sig.clone(),
+                                block: Box::new(f.block.clone()),
+                            })),
+                            _ => None,
+                        })
+                        .collect();
+                    body_lengths(&fns, out);
+                }
+                _ => {}
+            }
+        }
+    }
+
+    #[test]
+    fn long_expansions_are_split_below_rustc_limits() {
+        // rustc overflows its stack on debug builds of functions with more than about 3000
+        // `let`s; every emitted body must stay well below that.
+        let mechanism: syntax::Mechanism = syn::parse2(expand::tests::chain(
+            30,
+            true,
+            quote!([mass_matrix, coriolis, forward_dynamics]),
+        ))
+        .expect("parses");
+        let compiled = compile(mechanism, Path::new(".")).expect("valid");
+        let file: syn::File = syn::parse2(to_tokens(&compiled)).expect("valid Rust");
+        let mut lengths = Vec::new();
+        body_lengths(&file.items, &mut lengths);
+        let longest = lengths.iter().copied().max().unwrap_or(0);
+        assert!(
+            lengths.len() > 10,
+            "expected split pieces, found {} bodies",
+            lengths.len()
+        );
+        assert!(longest <= 2500, "a body of {longest} statements");
+    }
 }

@@ -368,7 +368,7 @@ pub fn expand(model: &Model, scalar_trait: syn::Path) -> Vec<Function> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::sym::OpCount;
     use proc_macro2::TokenStream;
