@@ -8,7 +8,8 @@
 //! ```
 //!
 //! Benchmark ids are `<Model>/<output>/generated` and `<Model>/<output>/reference`; a group
-//! `sin_cos/<Model>` times the sines and cosines the generated code needs, alone. One
+//! `sin_cos/<Model>/<pairs>` times alone the sines and cosines that the generated inverse
+//! dynamics computes. One
 //! measured call is one call on one state, the states taken in turn: the 20 `samples` of
 //! `tests/data/pinocchio/<model>.json` for the five anchor models and their URDF twins, the
 //! 20 of `benches/pinocchio/quadruped.json` (written by the `export_model` example) for the
@@ -382,28 +383,37 @@ macro_rules! bench_model {
                 });
             )*
             group.finish();
-            bench_sin_cos::<NQ, NV, NL>(c, name, &model, &states);
+            bench_sin_cos::<$m, NQ, NV, NL>(c, &model, &states);
         }
     };
 }
 
-/// The sines and cosines alone: one `sin_cos` per revolute coordinate, as many as the
-/// generated inverse dynamics computes (its `trig` count / 2), per state.
-fn bench_sin_cos<const NQ: usize, const NV: usize, const NL: usize>(
+/// The sines and cosines alone, to set beside the generated functions: per state, as many
+/// `sin_cos` calls as the generated inverse dynamics makes (its `trig` count / 2), on the
+/// last revolute coordinates of the state (the first joint of an arm turning about the
+/// gravity axis drops out of the dynamics). Id `sin_cos/<Model>/<pairs>`.
+fn bench_sin_cos<M: Mechanism, const NQ: usize, const NV: usize, const NL: usize>(
     c: &mut Criterion,
-    name: &str,
     model: &Model,
     states: &[State<NQ, NV, NL>],
 ) {
-    let revolute: Vec<usize> = model
+    let pairs = M::FUNCTIONS
+        .iter()
+        .find(|f| f.name == "inverse_dynamics")
+        .map_or(0, |f| f.trig / 2);
+    let mut revolute: Vec<usize> = model
         .bodies()
         .iter()
         .filter(|b| matches!(b.joint.kind, JointKind::Revolute { .. }))
         .map(|b| b.joint.idx_q)
         .collect();
+    revolute.drain(..revolute.len().saturating_sub(pairs));
+    if revolute.is_empty() {
+        return;
+    }
     let mut group = c.benchmark_group("sin_cos");
     group.sampling_mode(SamplingMode::Flat);
-    group.bench_function(format!("{name}/{}", revolute.len()), |b| {
+    group.bench_function(format!("{}/{}", M::NAME, revolute.len()), |b| {
         b.iter_custom(|iters| {
             cycle(states, iters, |s| {
                 let mut sum = 0.0;
