@@ -5,7 +5,7 @@
 //! Run with `cargo run --release -p models --example demo`.
 
 use dynamics_runtime::reference::Wrench;
-use dynamics_runtime::{Mechanism, Model, Reference};
+use dynamics_runtime::{DoubleDouble as Dd, Mechanism, Model, Reference};
 use models::anchors::{DoublePendulum, Panda, Pendulum, Planar3, Ur5};
 use models::puma560::Puma560;
 use models::seed::{EccentricRotor, FallingRod, GyroscopicBody};
@@ -13,12 +13,24 @@ use nalgebra::DMatrix;
 use std::hint::black_box;
 use std::time::Instant;
 
+/// Reports one bundled model, with closures over its generated functions.
+macro_rules! report {
+    ($m:ident) => {
+        report::<$m>(
+            |q, v, a, out| out.copy_from_slice(&$m::inverse_dynamics(&arr(q), &arr(v), &arr(a))),
+            |q, out| out.copy_from_slice($m::mass_matrix(&arr(q)).as_flattened()),
+            |q, v, t, out| out.copy_from_slice(&$m::forward_dynamics(&arr(q), &arr(v), &arr(t))),
+            |q, v, a, out| out.copy_from_slice(&$m::inverse_dynamics(&arr(q), &arr(v), &arr(a))),
+        )
+    };
+}
+
 fn main() {
     seed_examples();
     println!();
     println!("Bundled models: generated code vs the runtime reference (40 random states, f64)");
     println!(
-        "{:<16} {:>3}  {:<18} {:>6} {:>6} {:>4} {:>5}  {:>10}  {:>9} {:>9} {:>7}",
+        "{:<16} {:>3}  {:<18} {:>6} {:>6} {:>4} {:>5}  {:>9} {:>9}  {:>9} {:>9} {:>7}",
         "model",
         "dof",
         "function",
@@ -26,51 +38,26 @@ fn main() {
         "add",
         "div",
         "trig",
-        "max error",
+        "vs ref",
+        "vs 32 dig",
         "gen ns",
         "ref ns",
         "speedup"
     );
-    report::<Pendulum>(
-        |q, v, a, out| out.copy_from_slice(&Pendulum::inverse_dynamics(&arr(q), &arr(v), &arr(a))),
-        |q, out| out.copy_from_slice(Pendulum::mass_matrix(&arr(q)).as_flattened()),
-        |q, v, t, out| out.copy_from_slice(&Pendulum::forward_dynamics(&arr(q), &arr(v), &arr(t))),
-    );
-    report::<DoublePendulum>(
-        |q, v, a, out| {
-            out.copy_from_slice(&DoublePendulum::inverse_dynamics(&arr(q), &arr(v), &arr(a)))
-        },
-        |q, out| out.copy_from_slice(DoublePendulum::mass_matrix(&arr(q)).as_flattened()),
-        |q, v, t, out| {
-            out.copy_from_slice(&DoublePendulum::forward_dynamics(&arr(q), &arr(v), &arr(t)))
-        },
-    );
-    report::<Planar3>(
-        |q, v, a, out| out.copy_from_slice(&Planar3::inverse_dynamics(&arr(q), &arr(v), &arr(a))),
-        |q, out| out.copy_from_slice(Planar3::mass_matrix(&arr(q)).as_flattened()),
-        |q, v, t, out| out.copy_from_slice(&Planar3::forward_dynamics(&arr(q), &arr(v), &arr(t))),
-    );
-    report::<Ur5>(
-        |q, v, a, out| out.copy_from_slice(&Ur5::inverse_dynamics(&arr(q), &arr(v), &arr(a))),
-        |q, out| out.copy_from_slice(Ur5::mass_matrix(&arr(q)).as_flattened()),
-        |q, v, t, out| out.copy_from_slice(&Ur5::forward_dynamics(&arr(q), &arr(v), &arr(t))),
-    );
-    report::<Puma560>(
-        |q, v, a, out| out.copy_from_slice(&Puma560::inverse_dynamics(&arr(q), &arr(v), &arr(a))),
-        |q, out| out.copy_from_slice(Puma560::mass_matrix(&arr(q)).as_flattened()),
-        |q, v, t, out| out.copy_from_slice(&Puma560::forward_dynamics(&arr(q), &arr(v), &arr(t))),
-    );
-    report::<Panda>(
-        |q, v, a, out| out.copy_from_slice(&Panda::inverse_dynamics(&arr(q), &arr(v), &arr(a))),
-        |q, out| out.copy_from_slice(Panda::mass_matrix(&arr(q)).as_flattened()),
-        |q, v, t, out| out.copy_from_slice(&Panda::forward_dynamics(&arr(q), &arr(v), &arr(t))),
-    );
+    report!(Pendulum);
+    report!(DoublePendulum);
+    report!(Planar3);
+    report!(Ur5);
+    report!(Puma560);
+    report!(Panda);
     println!();
-    println!("max error: max |generated − reference| / (1 + max |reference|); times: median of 7 runs of 20 000 calls.");
+    println!("vs ref: max |generated − reference| / (1 + max |reference|) in f64; vs 32 dig: the generated f64");
+    println!("inverse dynamics against the same code in double-double (~32 digits); times: median of 7 × 20 000 calls.");
+    println!("The speed-accuracy chart: docs/speed_accuracy.svg (cargo run --release -p models --example charts).");
     println!("See the generated code of any model with: cargo run -p dynamics-codegen -- models/src/anchors.rs --only Ur5");
 }
 
-fn arr<const N: usize>(x: &[f64]) -> [f64; N] {
+fn arr<T: Copy, const N: usize>(x: &[T]) -> [T; N] {
     std::array::from_fn(|i| x[i])
 }
 
@@ -145,8 +132,10 @@ type Id = fn(&[f64], &[f64], &[f64], &mut [f64]);
 type Mm = fn(&[f64], &mut [f64]);
 /// Generated forward dynamics, writing q̈ into the last slice.
 type Fd = fn(&[f64], &[f64], &[f64], &mut [f64]);
+/// Generated inverse dynamics in double-double.
+type IdDd = fn(&[Dd], &[Dd], &[Dd], &mut [Dd]);
 
-fn report<M: Mechanism>(id: Id, mm: Mm, fd: Fd) {
+fn report<M: Mechanism>(id: Id, mm: Mm, fd: Fd, id_dd: IdDd) {
     let model: Model = M::model();
     let mut reference = Reference::<f64>::new(&model);
     let nv = model.nv();
@@ -157,6 +146,8 @@ fn report<M: Mechanism>(id: Id, mm: Mm, fd: Fd) {
     let (mut out, mut m) = (vec![0.0; nv], DMatrix::zeros(nv, nv));
     let (mut gen, mut gen_m) = (vec![0.0; nv], vec![0.0; nv * nv]);
     let mut err = [0.0_f64; 3];
+    let mut err_dd = 0.0_f64;
+    let mut exact = vec![Dd::new(0.0); nv];
     let relative = |g: &[f64], r: &[f64]| {
         let scale = 1.0 + r.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
         g.iter()
@@ -170,6 +161,13 @@ fn report<M: Mechanism>(id: Id, mm: Mm, fd: Fd) {
             .expect("sizes");
         id(q, v, a, &mut gen);
         err[0] = err[0].max(relative(&gen, &out));
+        let widen = |x: &[f64]| x.iter().map(|&y| Dd::new(y)).collect::<Vec<_>>();
+        id_dd(&widen(q), &widen(v), &widen(a), &mut exact);
+        let scale = 1.0 + exact.iter().fold(0.0_f64, |m, x| m.max(x.to_f64().abs()));
+        let dd_error = gen.iter().zip(&exact).fold(0.0_f64, |m, (g, e)| {
+            m.max((Dd::new(*g) - *e).abs().to_f64())
+        });
+        err_dd = err_dd.max(dd_error / scale);
         reference.mass_matrix(q, &mut m).expect("sizes");
         let rows: Vec<f64> = (0..nv)
             .flat_map(|i| (0..nv).map(move |j| (i, j)))
@@ -226,7 +224,7 @@ fn report<M: Mechanism>(id: Id, mm: Mm, fd: Fd) {
         let (mul, add, div, trig) = cost.map_or((0, 0, 0, 0), |c| (c.mul, c.add, c.div, c.trig));
         let (gen_ns, ref_ns) = timings[k];
         println!(
-            "{:<16} {:>3}  {:<18} {:>6} {:>6} {:>4} {:>5}  {:>10.1e}  {:>9.1} {:>9.1} {:>6.1}×",
+            "{:<16} {:>3}  {:<18} {:>6} {:>6} {:>4} {:>5}  {:>9.1e} {:>9}  {:>9.1} {:>9.1} {:>6.1}×",
             if k == 0 { M::NAME } else { "" },
             if k == 0 {
                 nv.to_string()
@@ -239,6 +237,7 @@ fn report<M: Mechanism>(id: Id, mm: Mm, fd: Fd) {
             div,
             trig,
             err[k],
+            if k == 0 { format!("{err_dd:.1e}") } else { String::new() },
             gen_ns,
             ref_ns,
             ref_ns / gen_ns
