@@ -94,26 +94,10 @@ fn free_joint_step<T: Scalar>(q: &[T], v: &[T], dt: T, out: &mut [T]) {
     let (x, y, z, w) = (q[3], q[4], q[5], q[6]);
     let two = T::from_f64(2.0);
     let one = T::one();
-    // R(quat) · v_lin (quaternion body → world, scalar last).
-    let r = [
-        [
-            one - two * (y * y + z * z),
-            two * (x * y - z * w),
-            two * (x * z + y * w),
-        ],
-        [
-            two * (x * y + z * w),
-            one - two * (x * x + z * z),
-            two * (y * z - x * w),
-        ],
-        [
-            two * (x * z - y * w),
-            two * (y * z + x * w),
-            one - two * (x * x + y * y),
-        ],
-    ];
+    let r = crate::reference::quaternion_rotation(x, y, z, w);
+    let moved = r * nalgebra::Vector3::new(v[0], v[1], v[2]) * dt;
     for i in 0..3 {
-        out[i] = q[i] + (r[i][0] * v[0] + r[i][1] * v[1] + r[i][2] * v[2]) * dt;
+        out[i] = q[i] + moved[i];
     }
     // quat ⊗ (ω dt / 2, 1), then normalized: the Cayley map, with the rounding of each step
     // projected away so the norm cannot drift over long runs.

@@ -18,6 +18,9 @@ use nalgebra::DMatrix;
 use plotters::prelude::*;
 use std::hint::black_box;
 use std::time::Instant;
+use support::{median_ns, uniform};
+
+mod support;
 
 mechanism! {
     /// The UR5 (from its URDF twin) with both forward-dynamics methods, by name.
@@ -28,20 +31,6 @@ mechanism! {
 }
 
 const STATES: usize = 20;
-
-fn median_ns(mut f: impl FnMut()) -> f64 {
-    let mut runs: Vec<f64> = (0..7)
-        .map(|_| {
-            let start = Instant::now();
-            for _ in 0..20_000 {
-                f();
-            }
-            start.elapsed().as_nanos() as f64 / 20_000.0
-        })
-        .collect();
-    runs.sort_by(f64::total_cmp);
-    runs[3]
-}
 
 fn relative(got: &[f64], exact: &[Dd]) -> f64 {
     let scale = 1.0 + exact.iter().fold(0.0_f64, |m, x| m.max(x.to_f64().abs()));
@@ -59,20 +48,13 @@ struct Point {
     error: f64,
 }
 
-fn lcg(seed: &mut u64) -> f64 {
-    *seed = seed
-        .wrapping_mul(6364136223846793005)
-        .wrapping_add(1442695040888963407);
-    (*seed >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
-}
-
 fn dynamics_points() -> Vec<Point> {
     let model = Ur5::model();
     let mut exact = Reference::<Dd>::new(&model);
     let (mut r64, mut r32) = (Reference::<f64>::new(&model), Reference::<f32>::new(&model));
     let mut seed = 7;
     let states: Vec<[[f64; 6]; 3]> = (0..STATES)
-        .map(|_| std::array::from_fn(|_| std::array::from_fn(|_| lcg(&mut seed))))
+        .map(|_| std::array::from_fn(|_| std::array::from_fn(|_| uniform(&mut seed, -2.0, 2.0))))
         .collect();
     let dd = |x: &[f64; 6]| x.map(Dd::new);
     let narrow = |x: &[f64; 6]| x.map(|y| y as f32);

@@ -11,7 +11,9 @@ use models::puma560::Puma560;
 use models::seed::{EccentricRotor, FallingRod, GyroscopicBody};
 use nalgebra::DMatrix;
 use std::hint::black_box;
-use std::time::Instant;
+use support::{median_ns, uniform};
+
+mod support;
 
 /// Reports one bundled model, with closures over its generated functions.
 macro_rules! report {
@@ -105,27 +107,6 @@ fn seed_examples() {
     );
 }
 
-fn random(seed: &mut u64, lo: f64, hi: f64) -> f64 {
-    *seed = seed
-        .wrapping_mul(6364136223846793005)
-        .wrapping_add(1442695040888963407);
-    lo + (hi - lo) * ((*seed >> 11) as f64 / (1u64 << 53) as f64)
-}
-
-fn median_ns(mut f: impl FnMut()) -> f64 {
-    let mut runs: Vec<f64> = (0..7)
-        .map(|_| {
-            let start = Instant::now();
-            for _ in 0..20_000 {
-                f();
-            }
-            start.elapsed().as_nanos() as f64 / 20_000.0
-        })
-        .collect();
-    runs.sort_by(f64::total_cmp);
-    runs[3]
-}
-
 /// Generated inverse dynamics, writing τ into the last slice.
 type Id = fn(&[f64], &[f64], &[f64], &mut [f64]);
 /// Generated mass matrix, writing M by rows into the last slice.
@@ -141,7 +122,7 @@ fn report<M: Mechanism>(id: Id, mm: Mm, fd: Fd, id_dd: IdDd) {
     let nv = model.nv();
     let mut seed = 42;
     let states: Vec<[Vec<f64>; 4]> = (0..40)
-        .map(|_| std::array::from_fn(|_| (0..nv).map(|_| random(&mut seed, -2.0, 2.0)).collect()))
+        .map(|_| std::array::from_fn(|_| (0..nv).map(|_| uniform(&mut seed, -2.0, 2.0)).collect()))
         .collect();
     let (mut out, mut m) = (vec![0.0; nv], DMatrix::zeros(nv, nv));
     let (mut gen, mut gen_m) = (vec![0.0; nv], vec![0.0; nv * nv]);

@@ -123,18 +123,7 @@ pub fn forward_dynamics_by(
         }
         ForwardMethod::MassMatrixLdlt => {
             let zero = vec![g.zero(); nv];
-            let bias = rnea::sweep(
-                &g,
-                model,
-                &t,
-                &i,
-                &rnea::SweepInputs {
-                    velocity: &v,
-                    acceleration: &zero,
-                    gravity: true,
-                    loads,
-                },
-            );
+            let bias = rnea::with_gravity(&g, model, &t, &i, &v, &zero, loads);
             let rhs: Vec<Node> = tau
                 .iter()
                 .zip(&bias.tau)
@@ -196,18 +185,7 @@ pub fn expand(model: &Model, scalar_trait: syn::Path) -> Vec<Function> {
     if outputs.inverse_dynamics && nv > 0 {
         let (g, t, i) = setup();
         let (v, a) = (inputs(&g, Array::V, nv), inputs(&g, Array::A, nv));
-        let s = rnea::sweep(
-            &g,
-            model,
-            &t,
-            &i,
-            &rnea::SweepInputs {
-                velocity: &v,
-                acceleration: &a,
-                gravity: true,
-                loads,
-            },
-        );
+        let s = rnea::with_gravity(&g, model, &t, &i, &v, &a, loads);
         let doc =
             "Inverse dynamics: τ = M(q) q̈ + C(q, q̇) q̇ + g(q) + b q̇ − Q, the joint forces that \
                    produce the accelerations `a` at state (`q`, `v`) (recursive Newton–Euler, \
@@ -219,18 +197,7 @@ pub fn expand(model: &Model, scalar_trait: syn::Path) -> Vec<Function> {
     if outputs.gravity && nv > 0 {
         let (g, t, i) = setup();
         let zero = vec![g.zero(); nv];
-        let s = rnea::sweep(
-            &g,
-            model,
-            &t,
-            &i,
-            &rnea::SweepInputs {
-                velocity: &zero,
-                acceleration: &zero,
-                gravity: true,
-                loads: false,
-            },
-        );
+        let s = rnea::with_gravity(&g, model, &t, &i, &zero, &zero, false);
         let doc = "Gravity torques g(q): the joint forces that hold the mechanism still at `q`."
             .to_owned();
         functions.push(sig.function(g, "gravity", doc, &[Array::Q], Output::Vector(s.tau)));
@@ -239,18 +206,7 @@ pub fn expand(model: &Model, scalar_trait: syn::Path) -> Vec<Function> {
         let (g, t, i) = setup();
         let v = inputs(&g, Array::V, nv);
         let zero = vec![g.zero(); nv];
-        let s = rnea::sweep(
-            &g,
-            model,
-            &t,
-            &i,
-            &rnea::SweepInputs {
-                velocity: &v,
-                acceleration: &zero,
-                gravity: true,
-                loads: false,
-            },
-        );
+        let s = rnea::with_gravity(&g, model, &t, &i, &v, &zero, false);
         let doc =
             "Bias forces C(q, q̇) q̇ + g(q) + b q̇: inverse dynamics at zero acceleration.".to_owned();
         functions.push(sig.function(g, "bias", doc, &[Array::Q, Array::V], Output::Vector(s.tau)));
@@ -339,18 +295,7 @@ pub fn expand(model: &Model, scalar_trait: syn::Path) -> Vec<Function> {
     if outputs.reactions && nv > 0 {
         let (g, t, i) = setup();
         let (v, a) = (inputs(&g, Array::V, nv), inputs(&g, Array::A, nv));
-        let s = rnea::sweep(
-            &g,
-            model,
-            &t,
-            &i,
-            &rnea::SweepInputs {
-                velocity: &v,
-                acceleration: &a,
-                gravity: true,
-                loads,
-            },
-        );
+        let s = rnea::with_gravity(&g, model, &t, &i, &v, &a, loads);
         let rows = s
             .wrenches
             .iter()

@@ -114,6 +114,30 @@ pub struct SweepInputs<'a> {
     pub loads: bool,
 }
 
+/// The sweeps with gravity acting, at the given q̇ and q̈ (zero nodes for bias and gravity).
+pub fn with_gravity(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    inertias: &[BodyInertia],
+    velocity: &[Node],
+    acceleration: &[Node],
+    loads: bool,
+) -> Sweep {
+    sweep(
+        g,
+        model,
+        transforms,
+        inertias,
+        &SweepInputs {
+            velocity,
+            acceleration,
+            gravity: true,
+            loads,
+        },
+    )
+}
+
 /// Runs the Newton–Euler sweeps.
 pub fn sweep(
     g: &Graph,

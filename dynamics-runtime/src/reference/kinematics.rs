@@ -27,7 +27,7 @@ fn axis_angle<T: Scalar>(axis: &Vector3<T>, angle: T) -> Matrix3<T> {
 }
 
 /// Rotation body → parent of a unit quaternion (x, y, z, w), scalar last.
-fn quaternion_rotation<T: Scalar>(x: T, y: T, z: T, w: T) -> Matrix3<T> {
+pub(crate) fn quaternion_rotation<T: Scalar>(x: T, y: T, z: T, w: T) -> Matrix3<T> {
     let one = T::one();
     let two = one + one;
     Matrix3::new(

@@ -34,6 +34,7 @@ mod coriolis;
 mod crba;
 mod energy;
 mod kinematics;
+pub(crate) use kinematics::quaternion_rotation;
 mod rnea;
 mod spatial;
 

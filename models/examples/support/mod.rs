@@ -1,0 +1,26 @@
+//! What the examples share: timing and a small deterministic generator.
+
+use std::time::Instant;
+
+/// Median over 7 runs of the time per call of `f`, each run 20 000 calls, in ns.
+pub fn median_ns(mut f: impl FnMut()) -> f64 {
+    let mut runs: Vec<f64> = (0..7)
+        .map(|_| {
+            let start = Instant::now();
+            for _ in 0..20_000 {
+                f();
+            }
+            start.elapsed().as_nanos() as f64 / 20_000.0
+        })
+        .collect();
+    runs.sort_by(f64::total_cmp);
+    runs[3]
+}
+
+/// A uniform number in [lo, hi) from a 64-bit linear congruential generator.
+pub fn uniform(seed: &mut u64, lo: f64, hi: f64) -> f64 {
+    *seed = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    lo + (hi - lo) * ((*seed >> 11) as f64 / (1u64 << 53) as f64)
+}
