@@ -8,6 +8,7 @@ use dynamics_runtime::reference::Wrench;
 use dynamics_runtime::{DoubleDouble as Dd, Mechanism, Model, Reference};
 use models::anchors::{DoublePendulum, Panda, Pendulum, Planar3, Ur5};
 use models::puma560::Puma560;
+use models::scenes::{PlanarArm, PlanarArmIn3d};
 use models::seed::{EccentricRotor, FallingRod, GyroscopicBody};
 use nalgebra::DMatrix;
 use std::hint::black_box;
@@ -52,9 +53,12 @@ fn main() {
     report!(Ur5);
     report!(Puma560);
     report!(Panda);
+    report!(PlanarArm);
+    report!(PlanarArmIn3d);
     println!();
     println!("vs ref: max |generated − reference| / (1 + max |reference|) in f64; vs 32 dig: the generated f64");
     println!("inverse dynamics against the same code in double-double (~32 digits); times: median of 7 × 20 000 calls.");
+    println!("PlanarArm and PlanarArmIn3d are one arm: declared planar, and with every body frame turned (3-D).");
     println!("The speed-accuracy chart: docs/speed_accuracy.svg (cargo run --release -p models --example charts).");
     println!("See the generated code of any model with: cargo run -p dynamics-codegen -- models/src/anchors.rs --only Ur5");
 }
