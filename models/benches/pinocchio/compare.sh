@@ -15,7 +15,9 @@
 #      (`cargo bench -p models --bench dynamics`) on the same models and the same states:
 #      the 20 samples of tests/data/pinocchio/<model>.json, and of quadruped.json here.
 #      Both sides make one call per state, the states in turn, on one thread, and report
-#      the median over repetitions; the script checks that both read bit-identical states;
+#      the median over repetitions; the script checks that both read bit-identical states.
+#      It goes model by model, Pinocchio then ours, so a change of the machine's load
+#      between the two sides of a ratio is unlikely; the load average of each is printed;
 #   5. prints the table (also written to build/comparison.md).
 # Pinocchio's crba and aba are timed in both of its conventions and the faster one is
 # compared. The quadruped's foot loads are zero for the generated code and Pinocchio gets no
@@ -36,7 +38,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --quick) QUICK=1 ;;
     --models) MODELS="$2"; shift ;;
-    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
+    -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
     *) echo "compare.sh: unknown argument $1 (try --help)" >&2; exit 2 ;;
   esac
   shift
@@ -101,11 +103,18 @@ fi
 cd "$ROOT"
 if [[ " $MODELS " == *" quadruped "* ]]; then
   step "exporting the quadruped and its states (cargo run --release -p models --example export_model)"
-  cargo run --release -q -p models --example export_model -- quadruped --out "$HERE/quadruped.json" >&2
+  mkdir -p "$HERE/build"
+  cargo run --release -q -p models --example export_model -- quadruped --out "$HERE/build/quadruped.json" >&2
+  # Replaced only when it changed: the benchmark embeds it, and a new mtime rebuilds it.
+  if ! cmp -s "$HERE/build/quadruped.json" "$HERE/quadruped.json"; then
+    cp "$HERE/build/quadruped.json" "$HERE/quadruped.json"
+    echo "    quadruped.json changed (the model or the exporter did): commit it" >&2
+  fi
 fi
 
+# The model files and the benchmarks' names, in the order of $MODELS.
 FILES=()
-FILTER=()
+NAMES=()
 for m in $MODELS; do
   case "$m" in
     pendulum) f=tests/data/pinocchio/pendulum.json; n=Pendulum ;;
@@ -117,9 +126,8 @@ for m in $MODELS; do
     *) fail "unknown model $m (pendulum double_pendulum planar3 ur5 panda quadruped)" ;;
   esac
   FILES+=("$f")
-  FILTER+=("$n")
+  NAMES+=("$n")
 done
-REGEX="^($(IFS='|'; echo "${FILTER[*]}"))/(inverse_dynamics|mass_matrix|bias|gravity|forward_dynamics|coriolis_matrix)/generated\$"
 
 if [ "$QUICK" = 1 ]; then
   PIN_ARGS=(--reps 5 --min-rep-ms 20 --warmup-ms 50)
@@ -140,26 +148,37 @@ if [ -d "$CRITERION" ]; then
   find "$CRITERION" -type d -name "$BASELINE" -prune -exec rm -rf {} +
 fi
 
-LOAD_BEFORE="$(cut -d' ' -f1-3 /proc/loadavg)"
-step "timing Pinocchio (load average $LOAD_BEFORE)"
-"$HERE/build/timing" "${PIN_ARGS[@]}" "${FILES[@]}" > "$HERE/build/pinocchio.tsv" ||
-  fail "the timing program failed (its message is above)"
-LOAD_MIDDLE="$(cut -d' ' -f1-3 /proc/loadavg)"
-step "timing the generated code (load average $LOAD_MIDDLE)"
-cargo bench -q -p models --bench dynamics -- "${CRIT_ARGS[@]}" --save-baseline "$BASELINE" "$REGEX" \
-  > "$HERE/build/criterion.log" 2>&1 ||
-  { tail -30 "$HERE/build/criterion.log" >&2; fail "cargo bench failed (log: build/criterion.log)"; }
-LOAD_AFTER="$(cut -d' ' -f1-3 /proc/loadavg)"
+# Model by model, Pinocchio then the generated code, so that the two sides of each ratio
+# are measured within a minute of each other.
+: > "$HERE/build/pinocchio.tsv"
+: > "$HERE/build/criterion.log"
+: > "$HERE/build/load.tsv"
+for i in "${!FILES[@]}"; do
+  m="$(echo $MODELS | cut -d' ' -f$((i + 1)))"
+  LOAD="$(cut -d' ' -f1-3 /proc/loadavg)"
+  step "timing $m: Pinocchio (load average $LOAD)"
+  printf '%s\tpinocchio\t%s\n' "$m" "$LOAD" >> "$HERE/build/load.tsv"
+  "$HERE/build/timing" "${PIN_ARGS[@]}" "${FILES[$i]}" >> "$HERE/build/pinocchio.tsv" ||
+    fail "the timing program failed on ${FILES[$i]} (its message is above)"
+  LOAD="$(cut -d' ' -f1-3 /proc/loadavg)"
+  step "timing $m: generated code (load average $LOAD)"
+  printf '%s\tgenerated\t%s\n' "$m" "$LOAD" >> "$HERE/build/load.tsv"
+  REGEX="^${NAMES[$i]}/(inverse_dynamics|mass_matrix|bias|gravity|forward_dynamics|coriolis_matrix)/generated\$"
+  cargo bench -q -p models --bench dynamics -- "${CRIT_ARGS[@]}" --save-baseline "$BASELINE" "$REGEX" \
+    >> "$HERE/build/criterion.log" 2>&1 ||
+    { tail -30 "$HERE/build/criterion.log" >&2; fail "cargo bench failed (log: build/criterion.log)"; }
+done
+printf 'end\t-\t%s\n' "$(cut -d' ' -f1-3 /proc/loadavg)" >> "$HERE/build/load.tsv"
 
 # ---- 5. the table -------------------------------------------------------------------------------
 step "joining the results"
 CPU="$(LC_ALL=C lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1)"
 "$VENV/bin/python" - "$HERE/build" "$CRITERION" "$BASELINE" "$CPU" "$(nproc)" \
-  "$LOAD_BEFORE" "$LOAD_MIDDLE" "$LOAD_AFTER" "$QUICK" "$(rustc --version)" "$(g++ --version | head -1)" \
+  "$QUICK" "$(rustc --version)" "$(g++ --version | head -1)" \
   $MODELS <<'PYTHON' || fail "could not join the two sides' results"
 import json, os, re, sys
 
-build, criterion, baseline, cpu, cores, load0, load1, load2, quick, rustc, gxx, *models = sys.argv[1:]
+build, criterion, baseline, cpu, cores, quick, rustc, gxx, *models = sys.argv[1:]
 NAMES = {"pendulum": "Pendulum", "double_pendulum": "DoublePendulum", "planar3": "Planar3",
          "ur5": "Ur5", "panda": "Panda", "quadruped": "Quadruped"}
 LABELS = {"pendulum": "pendulum", "double_pendulum": "double pendulum", "planar3": "planar 3R",
@@ -189,7 +208,14 @@ for line in open(os.path.join(build, "pinocchio.tsv")):
 ours_states = {}
 log = open(os.path.join(build, "criterion.log")).read()
 for m in re.finditer(r"^states (\w+) (\d+) ([0-9a-f]{16})", log, re.M):
-    ours_states[m.group(1)] = m.group(3)
+    if ours_states.setdefault(m.group(1), m.group(3)) != m.group(3):
+        print(f"compare.sh: {m.group(1)}'s states changed between runs", file=sys.stderr)
+        sys.exit(1)
+
+loads = {}
+for line in open(os.path.join(build, "load.tsv")):
+    model, side, load = line.rstrip("\n").split("\t")
+    loads[(model, side)] = load.split()[0]
 
 ours = {}
 for directory, _, files in os.walk(criterion):
@@ -230,8 +256,10 @@ if problems:
     sys.exit(1)
 
 out = []
-out.append(f"Machine: {cpu}, {cores} cores; load average (1, 5, 15 min) before Pinocchio {load0}, "
-           f"before Rust {load1}, after {load2}.")
+load_list = ", ".join(f"{LABELS[m]} {loads.get((m, 'pinocchio'), '?')}/{loads.get((m, 'generated'), '?')}"
+                      for m in models)
+out.append(f"Machine: {cpu}, {cores} cores. 1-minute load average when each side started "
+           f"(Pinocchio/generated): {load_list}; at the end {loads.get(('end', '-'), '?').split()[0]}.")
 out.append(f"{header}; {gxx}. Generated code: {rustc}, criterion median of flat samples.")
 if quick == "1":
     out.append("QUICK RUN (--quick): short measurements, not for figures.")
