@@ -12,6 +12,7 @@
 //! motion.
 
 mod diagnostics;
+pub(crate) mod linear;
 mod resolve;
 mod rules;
 mod tree;

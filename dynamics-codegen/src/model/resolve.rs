@@ -4,6 +4,7 @@
 //! Resolution reports what it cannot resolve (undeclared parameters, parameters where only a
 //! constant makes sense, missing fields) and carries every span on, for the rules.
 
+use super::linear;
 use super::value::{rotate_matrix, Mat3, Value, Vec3};
 use super::{rules, Diagnostics, Outputs, Parameter};
 use crate::syntax::{self, Axis, InertiaForm, Number, NumberValue, Rotation, ShapeKind, SpanRange};
@@ -116,17 +117,20 @@ impl Resolver<'_> {
         match rotation {
             Rotation::Rpy(angles, _) => {
                 let [r, p, y] = std::array::from_fn(|i| self.constant(&angles[i], "a rotation"));
-                rows(nalgebra::Rotation3::from_euler_angles(r, p, y).matrix())
+                rows(&linear::rotation_from_rpy(r, p, y))
             }
             Rotation::AxisAngle(axis, angle, _) => {
-                let a = nalgebra::Vector3::from(self.constant_vector(axis, "a rotation"));
+                let a = self.constant_vector(axis, "a rotation");
                 let angle = self.constant(angle, "a rotation");
-                if a.norm() == 0.0 || !a.norm().is_finite() {
+                let length = linear::norm(&a);
+                if length == 0.0 || !length.is_finite() {
                     rules::report_zero_rotation_axis(rotation.span(), self.diagnostics);
                     return IDENTITY;
                 }
-                let unit = nalgebra::Unit::new_normalize(a);
-                rows(nalgebra::Rotation3::from_axis_angle(&unit, angle).matrix())
+                rows(&linear::rotation_from_axis_angle(
+                    &linear::normalize(&a),
+                    angle,
+                ))
             }
             Rotation::Matrix(m) => std::array::from_fn(|i| {
                 std::array::from_fn(|j| self.constant(&m.rows[i][j], "a rotation"))
@@ -230,7 +234,7 @@ const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.
 /// exact: `rpy(pi / 2, 0, 0)` means a quarter turn, whose cosine is 0, not 6e-17, and the
 /// exact zeros let the expansion fold the terms they multiply. Matrices given by their
 /// entries are kept as written.
-fn rows(m: &nalgebra::Matrix3<f64>) -> [[f64; 3]; 3] {
+fn rows(m: &linear::Matrix3) -> [[f64; 3]; 3] {
     let snap = |x: f64| {
         if x.abs() < 1e-15 {
             0.0
@@ -240,7 +244,7 @@ fn rows(m: &nalgebra::Matrix3<f64>) -> [[f64; 3]; 3] {
             x
         }
     };
-    std::array::from_fn(|i| std::array::from_fn(|j| snap(m[(i, j)])))
+    m.map(|row| row.map(snap))
 }
 
 /// Resolves every number, form and name list of the declaration.

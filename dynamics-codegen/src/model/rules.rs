@@ -9,11 +9,11 @@
 //! a rule computed (principal moments, determinants, sums) with six significant digits, by
 //! [`computed`], so that rounding noise such as `0.30000000000000004` does not show.
 
+use super::linear::{self, Matrix3};
 use super::resolve::{Resolved, ResolvedBody, ResolvedJoint};
 use super::value::{nominal33, Mat3, Value};
 use super::{Diagnostics, Outputs};
 use crate::syntax::{self, JointKind, Name, SpanRange};
-use nalgebra::{Matrix3, SymmetricEigen};
 use proc_macro2::Span;
 use std::collections::HashMap;
 
@@ -30,7 +30,7 @@ pub(crate) fn check_all(mechanism: &syntax::Mechanism, resolved: &Resolved, d: &
     parameters_are_used(mechanism, resolved, d);
     names_are_unique(mechanism, d);
     for body in &resolved.bodies {
-        let inertia = matrix(&nominal33(&body.inertia, &p));
+        let inertia = nominal33(&body.inertia, &p);
         mass_is_not_negative(body, &p, d);
         if inertia_is_symmetric(body, &inertia, d) {
             inertia_is_positive(body, &inertia, d);
@@ -50,10 +50,6 @@ pub(crate) fn check_all(mechanism: &syntax::Mechanism, resolved: &Resolved, d: &
     free_joint_is_on_the_ground(mechanism, d);
     loads_act_on_declared_bodies(mechanism, d);
     dynamics_need_a_degree_of_freedom(mechanism, resolved, d);
-}
-
-fn matrix(m: &[[f64; 3]; 3]) -> Matrix3<f64> {
-    Matrix3::from_fn(|i, j| m[i][j])
 }
 
 /// A number computed by a rule, for a message: six significant digits, positional notation
@@ -246,18 +242,18 @@ fn mass_is_not_negative(body: &ResolvedBody, p: &[f64], d: &mut Diagnostics) {
 }
 
 /// Rule: I_G is symmetric (I_xy = I_yx, ...). Returns whether it is.
-fn inertia_is_symmetric(body: &ResolvedBody, inertia: &Matrix3<f64>, d: &mut Diagnostics) -> bool {
-    let scale = inertia.amax().max(f64::MIN_POSITIVE);
+fn inertia_is_symmetric(body: &ResolvedBody, inertia: &Matrix3, d: &mut Diagnostics) -> bool {
+    let scale = linear::max_abs_entry(inertia).max(f64::MIN_POSITIVE);
     for (i, j) in [(0, 1), (0, 2), (1, 2)] {
-        if (inertia[(i, j)] - inertia[(j, i)]).abs() > INERTIA_TOLERANCE * scale {
+        if (inertia[i][j] - inertia[j][i]).abs() > INERTIA_TOLERANCE * scale {
             d.error(
                 body.inertia_span,
                 format!(
                     "the inertia of body `{}` is not symmetric: I[{i}][{j}] = {} but I[{j}][{i}] = {}; \
                      give the same product of inertia on both sides",
                     body.name.text,
-                    inertia[(i, j)],
-                    inertia[(j, i)]
+                    inertia[i][j],
+                    inertia[j][i]
                 ),
             );
             return false;
@@ -267,15 +263,13 @@ fn inertia_is_symmetric(body: &ResolvedBody, inertia: &Matrix3<f64>, d: &mut Dia
 }
 
 /// Principal moments of a symmetric matrix, ascending.
-pub(crate) fn principal_moments(inertia: &Matrix3<f64>) -> [f64; 3] {
-    let mut p: [f64; 3] = SymmetricEigen::new(*inertia).eigenvalues.into();
-    p.sort_by(f64::total_cmp);
-    p
+pub(crate) fn principal_moments(inertia: &Matrix3) -> [f64; 3] {
+    linear::symmetric_eigenvalues(inertia)
 }
 
 /// Rule: I_G is positive semi-definite: every principal moment ≥ 0 (a thin rod has a zero
 /// moment about its axis, a point mass all zero).
-fn inertia_is_positive(body: &ResolvedBody, inertia: &Matrix3<f64>, d: &mut Diagnostics) {
+fn inertia_is_positive(body: &ResolvedBody, inertia: &Matrix3, d: &mut Diagnostics) {
     let p = principal_moments(inertia);
     if p[0] < -INERTIA_TOLERANCE * p[2].abs().max(f64::MIN_POSITIVE) {
         d.error(
@@ -294,7 +288,7 @@ fn inertia_is_positive(body: &ResolvedBody, inertia: &Matrix3<f64>, d: &mut Diag
 
 /// Rule: the principal moments satisfy I1 + I2 ≥ I3, as every real mass distribution does
 /// (I1 + I2 − I3 = 2∫z² dm in principal axes). Waived by `allow: [triangle_inequality]`.
-fn inertia_satisfies_triangle(body: &ResolvedBody, inertia: &Matrix3<f64>, d: &mut Diagnostics) {
+fn inertia_satisfies_triangle(body: &ResolvedBody, inertia: &Matrix3, d: &mut Diagnostics) {
     let p = principal_moments(inertia);
     if p[0] >= 0.0 && p[0] + p[1] < p[2] - INERTIA_TOLERANCE * (p[0] + p[1] + p[2]) {
         d.error(
@@ -332,8 +326,11 @@ fn axis_is_nonzero(joint: &ResolvedJoint, d: &mut Diagnostics) {
 
 /// Rule: a placement rotation is a proper rotation: RᵀR = 1 and det R = +1.
 fn rotation_is_proper(joint: &ResolvedJoint, d: &mut Diagnostics) {
-    let r = matrix(&joint.rotation);
-    let deviation = (r.transpose() * r - Matrix3::identity()).amax();
+    let r = &joint.rotation;
+    let deviation = linear::max_abs_entry(&linear::sub(
+        &linear::mul(&linear::transpose(r), r),
+        &linear::IDENTITY,
+    ));
     if deviation > ROTATION_TOLERANCE {
         d.error(
             joint.rotation_span,
@@ -345,13 +342,13 @@ fn rotation_is_proper(joint: &ResolvedJoint, d: &mut Diagnostics) {
                 computed(deviation)
             ),
         );
-    } else if r.determinant() < 0.0 {
+    } else if linear::determinant(r) < 0.0 {
         d.error(
             joint.rotation_span,
             format!(
                 "the rotation of joint `{}` has determinant {}: it is a reflection, not a rotation",
                 joint.name.text,
-                computed(r.determinant())
+                computed(linear::determinant(r))
             ),
         );
     }
@@ -630,6 +627,6 @@ pub(crate) fn coordinate_has_inertia(
 }
 
 /// Nominal-valued matrix helper for other modules.
-pub(crate) fn nominal_matrix(m: &Mat3, p: &[f64]) -> Matrix3<f64> {
-    matrix(&nominal33(m, p))
+pub(crate) fn nominal_matrix(m: &Mat3, p: &[f64]) -> Matrix3 {
+    nominal33(m, p)
 }

@@ -6,12 +6,12 @@
 //! body, expressed in that body's frame: c' = R c + p, I_G' = R I_G Rᵀ. Joints and loads on
 //! a merged body are re-based the same way.
 
+use super::linear::{self, Matrix3, Vector3};
 use super::resolve::Resolved;
 use super::rules::{self, GROUND};
 use super::value::{self, nominal3, Value, Vec3};
 use super::{Body, DeclaredBody, DeclaredJoint, Diagnostics, Joint, JointKind, Load, Model, Part};
 use crate::syntax::{self, JointKind as Declared};
-use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
 use std::collections::HashMap;
 
 /// Where a declared body ended up: its tree body (`None`: the ground) and its pose there.
@@ -260,30 +260,33 @@ fn depth_first_order(resolved: &Resolved, body_index: &HashMap<&str, usize>) -> 
 
 /// World poses (rotation, origin) of every tree body at configuration `angles` (one value
 /// per revolute or prismatic joint, free joints at identity).
-fn poses(
-    bodies: &[Body],
-    p: &[f64],
-    angles: impl Fn(usize) -> f64,
-) -> Vec<(Matrix3<f64>, Vector3<f64>)> {
-    let mut out: Vec<(Matrix3<f64>, Vector3<f64>)> = Vec::with_capacity(bodies.len());
+fn poses(bodies: &[Body], p: &[f64], angles: impl Fn(usize) -> f64) -> Vec<(Matrix3, Vector3)> {
+    let mut out: Vec<(Matrix3, Vector3)> = Vec::with_capacity(bodies.len());
     for (i, body) in bodies.iter().enumerate() {
-        let (r_parent, o_parent) = body
-            .parent
-            .map_or((Matrix3::identity(), Vector3::zeros()), |k| out[k]);
+        let (r_parent, o_parent) = body.parent.map_or((linear::IDENTITY, [0.0; 3]), |k| out[k]);
         let j = &body.joint;
-        let r_joint = r_parent * Matrix3::from_fn(|a, b| j.rotation_in_parent[a][b]);
-        let o_joint = o_parent + r_parent * Vector3::from(nominal3(&j.translation_in_parent, p));
+        let r_joint = linear::mul(&r_parent, &j.rotation_in_parent);
+        let o_joint = linear::add_vectors(
+            &o_parent,
+            &linear::mul_vector(&r_parent, &nominal3(&j.translation_in_parent, p)),
+        );
         out.push(match j.kind {
             JointKind::Revolute { axis_in_joint } => {
-                let axis = Unit::new_normalize(Vector3::from(axis_in_joint));
+                let axis = linear::normalize(&axis_in_joint);
                 (
-                    r_joint * Rotation3::from_axis_angle(&axis, angles(i)).matrix(),
+                    linear::mul(
+                        &r_joint,
+                        &linear::rotation_from_axis_angle(&axis, angles(i)),
+                    ),
                     o_joint,
                 )
             }
             JointKind::Prismatic { axis_in_joint } => (
                 r_joint,
-                o_joint + r_joint * Vector3::from(axis_in_joint) * angles(i),
+                linear::add_vectors(
+                    &o_joint,
+                    &linear::scale_vector(&linear::mul_vector(&r_joint, &axis_in_joint), angles(i)),
+                ),
             ),
             JointKind::Free => (r_joint, o_joint),
         });
@@ -321,10 +324,8 @@ fn check_coordinates_have_inertia(
     for body in bodies {
         for part in &body.parts {
             scale += part.mass.nominal(p).abs()
-                * (1.0 + Vector3::from(nominal3(&part.com_in_body, p)).norm_squared())
-                + rules::nominal_matrix(&part.inertia_com_in_body, p)
-                    .trace()
-                    .abs();
+                * (1.0 + linear::norm_squared(&nominal3(&part.com_in_body, p)))
+                + linear::trace(&rules::nominal_matrix(&part.inertia_com_in_body, p)).abs();
         }
     }
     for configuration in configurations {
@@ -332,23 +333,36 @@ fn check_coordinates_have_inertia(
         for (j, body) in bodies.iter().enumerate() {
             let (r_j, o_j) = world[j];
             let mut mass = 0.0;
-            let mut inertia_about_origin = Matrix3::zeros();
+            let mut inertia_about_origin = linear::ZERO;
             for k in (j..bodies.len()).filter(|&k| in_subtree(j, k)) {
                 let (r_k, o_k) = world[k];
                 for part in &bodies[k].parts {
                     let m = part.mass.nominal(p);
-                    let c = o_k + r_k * Vector3::from(nominal3(&part.com_in_body, p)) - o_j;
+                    let c = linear::sub_vectors(
+                        &linear::add_vectors(
+                            &o_k,
+                            &linear::mul_vector(&r_k, &nominal3(&part.com_in_body, p)),
+                        ),
+                        &o_j,
+                    );
                     let i_g =
-                        r_k * rules::nominal_matrix(&part.inertia_com_in_body, p) * r_k.transpose();
+                        linear::rotate(&r_k, &rules::nominal_matrix(&part.inertia_com_in_body, p));
                     mass += m;
-                    inertia_about_origin +=
-                        i_g + (Matrix3::identity() * c.norm_squared() - c * c.transpose()) * m;
+                    // I_G + m (|c|² 1 − c cᵀ), the parallel-axis shift to the joint origin.
+                    let shift = linear::sub(
+                        &linear::scale(&linear::IDENTITY, linear::norm_squared(&c)),
+                        &linear::outer(&c, &c),
+                    );
+                    inertia_about_origin = linear::add(
+                        &inertia_about_origin,
+                        &linear::add(&i_g, &linear::scale(&shift, m)),
+                    );
                 }
             }
             let moment = match body.joint.kind {
                 JointKind::Revolute { axis_in_joint } => {
-                    let a = r_j * Vector3::from(axis_in_joint);
-                    (a.transpose() * inertia_about_origin * a)[(0, 0)]
+                    let a = linear::mul_vector(&r_j, &axis_in_joint);
+                    linear::dot(&linear::vector_mul(&a, &inertia_about_origin), &a)
                 }
                 JointKind::Prismatic { .. } => 0.0,
                 JointKind::Free => rules::principal_moments(&inertia_about_origin)[0],
