@@ -9,11 +9,24 @@
 //! damping>` the viscous friction. The root link is welded to the ground, or given a free
 //! joint with `floating_base: true`. Mimic, planar, floating and spherical joints are
 //! refused: the tree expansion has no closed form for them.
+//!
+//! The XML is parsed by roxmltree; [`read`] maps its elements to URDF's meaning, as urdfdom
+//! and urdf-rs do: the `<link>` and `<joint>` children of the root element, matched by local
+//! name (so namespaces, comments and other elements such as `<material>`, `<gazebo>` and
+//! `<transmission>` pass unread); numbers parsed as Rust parses `f64` after trimming, a
+//! vector as the numbers among its space-separated words; a link without `<inertial>` has
+//! zero mass and inertia, a missing `<origin>` or attribute of it is zero (the identity),
+//! a missing `<axis>` is x; `quat_xyzw` replaces `rpy` from URDF 1.1 on; `<limit>`,
+//! `<visual>`, `<collision>`, `<calibration>` and `<safety_controller>` are not read. A
+//! file that is not well-formed XML, or lacks an element or attribute URDF requires, is
+//! reported at its line and column.
 
+use crate::model::linear;
 use crate::syntax::{
     self, Axis, Body, InertiaForm, Joint, JointKind, Matrix, Name, Number, Rotation, SpanRange,
     Vector,
 };
+use roxmltree::{Document, Node, TextPos};
 use std::path::{Path, PathBuf};
 
 /// Reads the mechanism's URDF file (if it names one) and appends its bodies and joints.
@@ -37,8 +50,7 @@ pub fn import(
             ),
         )
     })?;
-    let robot = urdf_rs::read_from_string(&text)
-        .map_err(|e| syn::Error::new(span, malformed(&written, &text, &e)))?;
+    let robot = read(&text).map_err(|e| syn::Error::new(span, e.describe(&written)))?;
     let mut errors: Option<syn::Error> = None;
     let mut refuse = |message: String| {
         let e = syn::Error::new(span, format!("URDF file `{written}`: {message}"));
@@ -58,51 +70,43 @@ pub fn import(
         span,
     };
     for link in &robot.links {
-        let i = &link.inertial.inertia;
-        let inertia_in_inertial = nalgebra::Matrix3::new(
-            i.ixx, i.ixy, i.ixz, i.ixy, i.iyy, i.iyz, i.ixz, i.iyz, i.izz,
-        );
-        let rpy = link.inertial.origin.rpy.0;
-        let r = *nalgebra::Rotation3::from_euler_angles(rpy[0], rpy[1], rpy[2]).matrix();
-        let inertia = r * inertia_in_inertial * r.transpose();
+        let [ixx, ixy, ixz, iyy, iyz, izz] = link.inertial.inertia;
+        let inertia_in_inertial = [[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]];
+        let [roll, pitch, yaw] = link.inertial.origin.rpy;
+        let r = linear::rotation_from_rpy(roll, pitch, yaw);
+        let inertia = linear::rotate(&r, &inertia_in_inertial);
         mechanism.bodies.push(Body {
             docs: vec![format!(" Link `{}` of `{written}`.", link.name)],
             name: name(&link.name),
-            mass: Some(number(link.inertial.mass.value)),
-            com: Some(vector(link.inertial.origin.xyz.0)),
+            mass: Some(number(link.inertial.mass)),
+            com: Some(vector(link.inertial.origin.xyz)),
             inertia: Some(InertiaForm::Matrix(Matrix {
-                rows: std::array::from_fn(|a| std::array::from_fn(|b| number(inertia[(a, b)]))),
+                rows: inertia.map(|row| row.map(number)),
                 span: range,
             })),
             span: range,
         });
     }
     for joint in &robot.joints {
-        let kind = match joint.joint_type {
-            urdf_rs::JointType::Revolute | urdf_rs::JointType::Continuous => JointKind::Revolute,
-            urdf_rs::JointType::Prismatic => JointKind::Prismatic,
-            urdf_rs::JointType::Fixed => JointKind::Fixed,
-            urdf_rs::JointType::Floating
-            | urdf_rs::JointType::Planar
-            | urdf_rs::JointType::Spherical => {
-                let written_type = match joint.joint_type {
-                    urdf_rs::JointType::Floating => "floating",
-                    urdf_rs::JointType::Planar => "planar",
-                    _ => "spherical",
-                };
+        let kind = match joint.kind {
+            JointType::Revolute | JointType::Continuous => JointKind::Revolute,
+            JointType::Prismatic => JointKind::Prismatic,
+            JointType::Fixed => JointKind::Fixed,
+            JointType::Floating | JointType::Planar | JointType::Spherical => {
                 refuse(format!(
-                    "joint `{}` is a `{written_type}` joint, which is not supported (use \
-                     revolute, continuous, prismatic or fixed joints)",
-                    joint.name
+                    "joint `{}` is a `{}` joint, which is not supported (use revolute, \
+                     continuous, prismatic or fixed joints)",
+                    joint.name,
+                    joint.kind.written()
                 ));
                 continue;
             }
         };
-        if let Some(mimic) = &joint.mimic {
+        if let Some(mimicked) = &joint.mimic {
             refuse(format!(
-                "joint `{}` mimics joint `{}`; mimic joints are not supported (declare it as an \
-                 independent joint or make it fixed)",
-                joint.name, mimic.joint
+                "joint `{}` mimics joint `{mimicked}`; mimic joints are not supported (declare it \
+                 as an independent joint or make it fixed)",
+                joint.name
             ));
             continue;
         }
@@ -112,27 +116,23 @@ pub fn import(
             name: name(&joint.name),
             kind,
             kind_span: span,
-            parent: name(&joint.parent.link),
-            child: name(&joint.child.link),
+            parent: name(&joint.parent),
+            child: name(&joint.child),
             axis: moving.then(|| Axis {
-                direction: vector(joint.axis.xyz.0),
+                direction: vector(joint.axis),
                 span: range,
             }),
-            at: Some(vector(joint.origin.xyz.0)),
-            rotation: Some(Rotation::Rpy(joint.origin.rpy.0.map(number), range)),
+            at: Some(vector(joint.origin.xyz)),
+            rotation: Some(Rotation::Rpy(joint.origin.rpy.map(number), range)),
             armature: None,
-            damping: joint
-                .dynamics
-                .as_ref()
-                .filter(|d| d.damping != 0.0)
-                .map(|d| number(d.damping)),
+            damping: (joint.damping != 0.0).then(|| number(joint.damping)),
         });
     }
     let roots: Vec<&str> = robot
         .links
         .iter()
         .map(|l| l.name.as_str())
-        .filter(|l| !robot.joints.iter().any(|j| j.child.link == *l))
+        .filter(|l| !robot.joints.iter().any(|j| j.child == *l))
         .collect();
     match roots.as_slice() {
         [root] => mechanism.joints.push(Joint {
@@ -168,44 +168,437 @@ pub fn import(
     }
 }
 
-/// The message for a file urdf-rs cannot read. Its XML errors carry no position, so when
-/// the file is not well-formed XML, roxmltree's message, which has one, replaces them
-/// (roxmltree only runs on files urdf-rs refused, so it never refuses one urdf-rs reads).
-fn malformed(written: &str, text: &str, urdf_error: &urdf_rs::UrdfError) -> String {
-    let options = roxmltree::ParsingOptions {
-        allow_dtd: true,
-        ..roxmltree::ParsingOptions::default()
-    };
-    let e = match roxmltree::Document::parse_with_options(text, options) {
-        Ok(_) => return format!("URDF file `{written}` is malformed: {urdf_error}"),
-        Err(e) => e,
-    };
-    // roxmltree writes the position, when it has one, into its message as ` at row:col`.
-    let position = e.pos();
-    let at = format!(" at {position}");
-    let described = e.to_string();
-    let message = match &e {
-        roxmltree::Error::UnexpectedCloseTag(expected, actual, _) => format!(
-            "found `</{actual}>` where `</{expected}>` was expected (is a `<{expected}>` \
-             element left open?)"
-        ),
-        _ => described.replacen(&at, "", 1),
-    };
-    if described.contains(&at) {
-        format!(
-            "URDF file `{written}` is malformed at line {}, column {}: {message}",
-            position.row, position.col
-        )
-    } else {
-        format!("URDF file `{written}` is malformed: {message}")
-    }
-}
-
 /// The manifest directory of the crate being compiled (where URDF paths are relative to).
 pub fn manifest_dir() -> PathBuf {
     std::env::var_os("CARGO_MANIFEST_DIR")
         .map(PathBuf::from)
         .unwrap_or_default()
+}
+
+/// What the import reads of a URDF file: its links and joints, in file order.
+struct Robot {
+    links: Vec<Link>,
+    joints: Vec<UrdfJoint>,
+}
+
+/// A `<link>`.
+struct Link {
+    name: String,
+    inertial: Inertial,
+}
+
+/// A link's `<inertial>`; a link without one has zero mass and inertia.
+#[derive(Default)]
+struct Inertial {
+    /// The inertial frame in the link frame: the mass centre and the inertia's axes.
+    origin: Pose,
+    mass: f64,
+    /// `ixx, ixy, ixz, iyy, iyz, izz` in the inertial frame.
+    inertia: [f64; 6],
+}
+
+/// An `<origin>`: a translation and roll-pitch-yaw angles; missing, the identity.
+#[derive(Clone, Copy, Default)]
+struct Pose {
+    xyz: [f64; 3],
+    rpy: [f64; 3],
+}
+
+/// A `<joint>`.
+struct UrdfJoint {
+    name: String,
+    kind: JointType,
+    /// The joint frame in the parent link's frame.
+    origin: Pose,
+    parent: String,
+    child: String,
+    /// In the joint frame; [1, 0, 0] when the joint has no `<axis>`.
+    axis: [f64; 3],
+    /// `<dynamics damping>`, 0 when absent.
+    damping: f64,
+    /// The joint named by `<mimic joint>`.
+    mimic: Option<String>,
+}
+
+/// URDF's joint types.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum JointType {
+    Revolute,
+    Continuous,
+    Prismatic,
+    Fixed,
+    Floating,
+    Planar,
+    Spherical,
+}
+
+impl JointType {
+    const ALL: [JointType; 7] = [
+        JointType::Revolute,
+        JointType::Continuous,
+        JointType::Prismatic,
+        JointType::Fixed,
+        JointType::Floating,
+        JointType::Planar,
+        JointType::Spherical,
+    ];
+
+    /// The name of the type in a URDF file.
+    fn written(self) -> &'static str {
+        match self {
+            JointType::Revolute => "revolute",
+            JointType::Continuous => "continuous",
+            JointType::Prismatic => "prismatic",
+            JointType::Fixed => "fixed",
+            JointType::Floating => "floating",
+            JointType::Planar => "planar",
+            JointType::Spherical => "spherical",
+        }
+    }
+}
+
+/// Why a file cannot be read as URDF, and where, when that is known.
+#[derive(Debug)]
+struct Malformed {
+    at: Option<TextPos>,
+    message: String,
+}
+
+impl Malformed {
+    /// The message of the compile error.
+    fn describe(&self, written: &str) -> String {
+        match self.at {
+            Some(at) => format!(
+                "URDF file `{written}` is malformed at line {}, column {}: {}",
+                at.row, at.col, self.message
+            ),
+            None => format!("URDF file `{written}` is malformed: {}", self.message),
+        }
+    }
+
+    /// A file that is not well-formed XML: roxmltree's message, with its position (which
+    /// roxmltree writes into its message as ` at row:col`) taken out.
+    fn xml(e: &roxmltree::Error) -> Self {
+        let position = e.pos();
+        let at = format!(" at {position}");
+        let described = e.to_string();
+        let message = match e {
+            roxmltree::Error::UnexpectedCloseTag(expected, actual, _) => format!(
+                "found `</{actual}>` where `</{expected}>` was expected (is a `<{expected}>` \
+                 element left open?)"
+            ),
+            _ => described.replacen(&at, "", 1),
+        };
+        Malformed {
+            at: described.contains(&at).then_some(position),
+            message,
+        }
+    }
+}
+
+/// Reads the links and joints of a URDF document.
+fn read(text: &str) -> Result<Robot, Malformed> {
+    let options = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        ..roxmltree::ParsingOptions::default()
+    };
+    let document = Document::parse_with_options(text, options).map_err(|e| Malformed::xml(&e))?;
+    let robot = document.root_element();
+    let reader = Reader {
+        document: &document,
+        quaternions: version(robot) >= (1, 1),
+    };
+    let mut links = Vec::new();
+    let mut joints = Vec::new();
+    for element in robot.children().filter(Node::is_element) {
+        match element.tag_name().name() {
+            "link" => links.push(reader.link(element)?),
+            "joint" => joints.push(reader.joint(element)?),
+            _ => {}
+        }
+    }
+    Ok(Robot { links, joints })
+}
+
+/// The URDF version of `<robot version="major.minor">`; 1.0 when absent or unreadable, as
+/// in urdfdom.
+fn version(robot: Node) -> (u32, u32) {
+    robot
+        .attribute("version")
+        .and_then(|v| {
+            let (major, minor) = v.trim().split_once('.')?;
+            Some((major.parse().ok()?, minor.parse().ok()?))
+        })
+        .unwrap_or((1, 0))
+}
+
+/// Roll, pitch and yaw of the rotation of a quaternion (x, y, z, w), as urdfdom's
+/// `Rotation::getRPY`: normalized first (zero is the identity), with pitch at ±π/2 (gimbal
+/// lock) given as roll 0 and all of the turn about z.
+fn quaternion_to_rpy([x, y, z, w]: [f64; 4]) -> [f64; 3] {
+    let norm = (x * x + y * y + z * z + w * w).sqrt();
+    let [x, y, z, w] = if norm > 0.0 {
+        [x / norm, y / norm, z / norm, w / norm]
+    } else {
+        [0.0, 0.0, 0.0, 1.0]
+    };
+    let sin_pitch = -2.0 * (x * z - w * y);
+    if sin_pitch <= -0.99999 {
+        [0.0, -std::f64::consts::FRAC_PI_2, 2.0 * x.atan2(-y)]
+    } else if sin_pitch >= 0.99999 {
+        [0.0, std::f64::consts::FRAC_PI_2, 2.0 * (-x).atan2(y)]
+    } else {
+        let (xx, yy, zz, ww) = (x * x, y * y, z * z, w * w);
+        [
+            (2.0 * (y * z + w * x)).atan2(ww - xx - yy + zz),
+            sin_pitch.asin(),
+            (2.0 * (x * y + w * z)).atan2(ww + xx - yy - zz),
+        ]
+    }
+}
+
+/// Reads elements of one document, reporting at their line and column.
+struct Reader<'a, 'input> {
+    document: &'a Document<'input>,
+    /// Whether `<origin quat_xyzw>` is read (URDF 1.1 and later).
+    quaternions: bool,
+}
+
+impl<'a, 'input> Reader<'a, 'input> {
+    /// An error at byte `at` of the text.
+    fn error(&self, at: usize, message: String) -> Malformed {
+        Malformed {
+            at: Some(self.document.text_pos_at(at)),
+            message,
+        }
+    }
+
+    /// An error at an element.
+    fn at(&self, element: Node, message: String) -> Malformed {
+        self.error(element.range().start, message)
+    }
+
+    /// The child element `<name>` of `element`, which may appear at most once. `what` names
+    /// `element` for messages.
+    fn child(
+        &self,
+        element: Node<'a, 'input>,
+        name: &str,
+        what: &str,
+    ) -> Result<Option<Node<'a, 'input>>, Malformed> {
+        let mut found = element
+            .children()
+            .filter(|c| c.is_element() && c.tag_name().name() == name);
+        let first = found.next();
+        match found.next() {
+            Some(second) => Err(self.at(second, format!("{what} has a second `<{name}>`"))),
+            None => Ok(first),
+        }
+    }
+
+    /// The child element `<name>` of `element`, which must appear once.
+    fn required_child(
+        &self,
+        element: Node<'a, 'input>,
+        name: &str,
+        what: &str,
+    ) -> Result<Node<'a, 'input>, Malformed> {
+        self.child(element, name, what)?
+            .ok_or_else(|| self.at(element, format!("{what} has no `<{name}>`")))
+    }
+
+    /// The attribute `name` of `element`, which must be present.
+    fn required(
+        &self,
+        element: Node<'a, 'input>,
+        name: &str,
+        what: &str,
+    ) -> Result<&'a str, Malformed> {
+        element
+            .attribute(name)
+            .ok_or_else(|| self.at(element, format!("{what} has no `{name}`")))
+    }
+
+    /// An error at the value of attribute `name`.
+    fn at_value(&self, element: Node, name: &str, message: String) -> Malformed {
+        let at = element
+            .attribute_node(name)
+            .map_or(element.range().start, |a| a.range_value().start);
+        self.error(at, message)
+    }
+
+    /// The number in attribute `name`, if present.
+    fn number(&self, element: Node, name: &str, what: &str) -> Result<Option<f64>, Malformed> {
+        let Some(text) = element.attribute(name) else {
+            return Ok(None);
+        };
+        match text.trim().parse::<f64>() {
+            Ok(x) => Ok(Some(x)),
+            Err(_) => Err(self.at_value(
+                element,
+                name,
+                format!("`{name}` of {what} is `{text}`, which is not a number"),
+            )),
+        }
+    }
+
+    /// The number in attribute `name`, which must be present.
+    fn required_number(
+        &self,
+        element: Node<'a, 'input>,
+        name: &str,
+        what: &str,
+    ) -> Result<f64, Malformed> {
+        self.required(element, name, what)?;
+        Ok(self.number(element, name, what)?.unwrap_or_default())
+    }
+
+    /// The `N` numbers among the space-separated words of attribute `name`, if present.
+    fn numbers<const N: usize>(
+        &self,
+        element: Node,
+        name: &str,
+        what: &str,
+    ) -> Result<Option<[f64; N]>, Malformed> {
+        let Some(text) = element.attribute(name) else {
+            return Ok(None);
+        };
+        let numbers: Vec<f64> = text
+            .split_whitespace()
+            .filter_map(|word| word.parse().ok())
+            .collect();
+        numbers.try_into().map(Some).map_err(|numbers: Vec<f64>| {
+            self.at_value(
+                element,
+                name,
+                format!(
+                    "`{name}` of {what} is `{text}`, which has {} numbers; it needs {N}",
+                    numbers.len()
+                ),
+            )
+        })
+    }
+
+    /// The `<origin>` child of `element` (`owner` names it), the identity when absent.
+    fn origin(&self, element: Node<'a, 'input>, owner: &str) -> Result<Pose, Malformed> {
+        let Some(origin) = self.child(element, "origin", owner)? else {
+            return Ok(Pose::default());
+        };
+        let what = format!("the `<origin>` of {owner}");
+        let xyz = self.numbers(origin, "xyz", &what)?.unwrap_or_default();
+        let mut rpy = self.numbers(origin, "rpy", &what)?.unwrap_or_default();
+        if self.quaternions && origin.attribute("quat_xyzw").is_some() {
+            if origin.attribute("rpy").is_some() {
+                return Err(self.at(
+                    origin,
+                    format!("{what} has both `rpy` and `quat_xyzw`; give one or the other"),
+                ));
+            }
+            let quaternion = origin.attribute("quat_xyzw").unwrap_or_default();
+            let words: Result<Vec<f64>, _> =
+                quaternion.split_whitespace().map(str::parse).collect();
+            let q: [f64; 4] = words.ok().and_then(|w| w.try_into().ok()).ok_or_else(|| {
+                self.at_value(
+                    origin,
+                    "quat_xyzw",
+                    format!("`quat_xyzw` of {what} is `{quaternion}`, not four numbers"),
+                )
+            })?;
+            rpy = quaternion_to_rpy(q);
+        }
+        Ok(Pose { xyz, rpy })
+    }
+
+    /// A `<link>`.
+    fn link(&self, element: Node<'a, 'input>) -> Result<Link, Malformed> {
+        let name = self.required(element, "name", "a `<link>`")?;
+        let owner = format!("link `{name}`");
+        let inertial = match self.child(element, "inertial", &owner)? {
+            None => Inertial::default(),
+            Some(inertial) => {
+                let what = format!("the `<inertial>` of {owner}");
+                let origin = self.origin(inertial, &what)?;
+                let mass = self.required_child(inertial, "mass", &what)?;
+                let mass =
+                    self.required_number(mass, "value", &format!("the `<mass>` of {owner}"))?;
+                let element = self.required_child(inertial, "inertia", &what)?;
+                let what = format!("the `<inertia>` of {owner}");
+                let mut inertia = [0.0; 6];
+                for (i, name) in ["ixx", "ixy", "ixz", "iyy", "iyz", "izz"]
+                    .iter()
+                    .enumerate()
+                {
+                    inertia[i] = self.required_number(element, name, &what)?;
+                }
+                Inertial {
+                    origin,
+                    mass,
+                    inertia,
+                }
+            }
+        };
+        Ok(Link {
+            name: name.to_owned(),
+            inertial,
+        })
+    }
+
+    /// A `<joint>`.
+    fn joint(&self, element: Node<'a, 'input>) -> Result<UrdfJoint, Malformed> {
+        let name = self.required(element, "name", "a `<joint>`")?;
+        let owner = format!("joint `{name}`");
+        let written = self.required(element, "type", &owner)?;
+        let kind = JointType::ALL
+            .into_iter()
+            .find(|t| t.written() == written)
+            .ok_or_else(|| {
+                self.at_value(
+                    element,
+                    "type",
+                    format!(
+                        "{owner} has type `{written}`, which is not a URDF joint type (revolute, \
+                         continuous, prismatic, fixed, floating, planar or spherical)"
+                    ),
+                )
+            })?;
+        let link = |tag: &str| -> Result<String, Malformed> {
+            let node = self.required_child(element, tag, &owner)?;
+            let link = self.required(node, "link", &format!("the `<{tag}>` of {owner}"))?;
+            Ok(link.to_owned())
+        };
+        let (parent, child) = (link("parent")?, link("child")?);
+        let axis = match self.child(element, "axis", &owner)? {
+            Some(axis) => {
+                let what = format!("the `<axis>` of {owner}");
+                self.required(axis, "xyz", &what)?;
+                self.numbers(axis, "xyz", &what)?.unwrap_or_default()
+            }
+            None => [1.0, 0.0, 0.0],
+        };
+        let damping = match self.child(element, "dynamics", &owner)? {
+            Some(dynamics) => self
+                .number(dynamics, "damping", &format!("the `<dynamics>` of {owner}"))?
+                .unwrap_or(0.0),
+            None => 0.0,
+        };
+        let mimic = match self.child(element, "mimic", &owner)? {
+            Some(mimic) => Some(
+                self.required(mimic, "joint", &format!("the `<mimic>` of {owner}"))?
+                    .to_owned(),
+            ),
+            None => None,
+        };
+        Ok(UrdfJoint {
+            name: name.to_owned(),
+            kind,
+            origin: self.origin(element, &owner)?,
+            parent,
+            child,
+            axis,
+            damping,
+            mimic,
+        })
+    }
 }
 
 #[cfg(test)]
@@ -283,6 +676,327 @@ mod tests {
         assert!(
             e.to_string().contains("joint `slide` is a `planar` joint"),
             "{e}"
+        );
+    }
+
+    /// The constant of a number the import wrote.
+    fn constant(n: &Number) -> f64 {
+        match n.value {
+            syntax::NumberValue::Constant(x) => x,
+            _ => panic!("not a constant: {n:?}"),
+        }
+    }
+
+    fn vector3(v: &Vector) -> [f64; 3] {
+        v.components.each_ref().map(constant)
+    }
+
+    fn inertia(body: &Body) -> [[f64; 3]; 3] {
+        match &body.inertia {
+            Some(InertiaForm::Matrix(m)) => {
+                m.rows.each_ref().map(|row| row.each_ref().map(constant))
+            }
+            other => panic!("not a matrix: {other:?}"),
+        }
+    }
+
+    fn rpy(joint: &Joint) -> [f64; 3] {
+        match &joint.rotation {
+            Some(Rotation::Rpy(angles, _)) => angles.each_ref().map(constant),
+            other => panic!("not rpy: {other:?}"),
+        }
+    }
+
+    /// A link `name` with a unit mass and inertia diag(1, 2, 3).
+    fn link(name: &str) -> String {
+        format!(
+            r#"<link name="{name}"><inertial><mass value="1"/>
+                 <inertia ixx="1" ixy="0" ixz="0" iyy="2" iyz="0" izz="3"/></inertial></link>"#
+        )
+    }
+
+    #[test]
+    fn a_link_without_inertial_has_zero_mass_and_inertia() {
+        let m = import_text(
+            "no-inertial",
+            &format!(
+                r#"<robot name="r"><link name="base"/>{}
+                   <joint name="j" type="revolute"><parent link="base"/><child link="arm"/></joint>
+                   </robot>"#,
+                link("arm")
+            ),
+        )
+        .expect("imports");
+        let base = &m.bodies[0];
+        assert_eq!(base.name.text, "base");
+        assert_eq!(base.mass.as_ref().map(constant), Some(0.0));
+        assert_eq!(base.com.as_ref().map(vector3), Some([0.0; 3]));
+        assert_eq!(inertia(base), [[0.0; 3]; 3]);
+        // The arm's inertial frame is the link frame: no origin, no rotation.
+        assert_eq!(
+            inertia(&m.bodies[1]),
+            [[1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 3.0]]
+        );
+    }
+
+    #[test]
+    fn missing_origins_are_the_identity_and_missing_attributes_zero() {
+        let m = import_text(
+            "no-origin",
+            &format!(
+                r#"<robot name="r"><link name="base"/>{}{}
+                   <joint name="a" type="revolute"><parent link="base"/><child link="arm"/></joint>
+                   <joint name="b" type="revolute"><origin xyz="0 0 0.5"/>
+                     <parent link="arm"/><child link="hand"/></joint>
+                   </robot>"#,
+                link("arm"),
+                link("hand")
+            ),
+        )
+        .expect("imports");
+        let [a, b] = [&m.joints[0], &m.joints[1]];
+        assert_eq!(a.at.as_ref().map(vector3), Some([0.0; 3]));
+        assert_eq!(rpy(a), [0.0; 3]);
+        assert_eq!(b.at.as_ref().map(vector3), Some([0.0, 0.0, 0.5]));
+        assert_eq!(rpy(b), [0.0; 3]);
+    }
+
+    #[test]
+    fn the_default_axis_is_x_and_continuous_joints_are_revolute() {
+        let m = import_text(
+            "axis",
+            &format!(
+                r#"<robot name="r"><link name="base"/>{}{}{}
+                   <joint name="spin" type="continuous"><parent link="base"/><child link="a"/></joint>
+                   <joint name="slide" type="prismatic"><parent link="a"/><child link="b"/>
+                     <axis xyz=" 0  1 0 "/><limit effort="1"/></joint>
+                   <joint name="weld" type="fixed"><parent link="b"/><child link="c"/>
+                     <axis xyz="0 0 1"/></joint>
+                   </robot>"#,
+                link("a"),
+                link("b"),
+                link("c")
+            ),
+        )
+        .expect("imports");
+        let [spin, slide, weld] = [&m.joints[0], &m.joints[1], &m.joints[2]];
+        assert_eq!(spin.kind, JointKind::Revolute);
+        assert_eq!(
+            spin.axis.as_ref().map(|a| vector3(&a.direction)),
+            Some([1.0, 0.0, 0.0])
+        );
+        assert_eq!(slide.kind, JointKind::Prismatic);
+        assert_eq!(
+            slide.axis.as_ref().map(|a| vector3(&a.direction)),
+            Some([0.0, 1.0, 0.0])
+        );
+        // A fixed joint takes no axis, even when the file gives one.
+        assert_eq!(weld.kind, JointKind::Fixed);
+        assert!(weld.axis.is_none());
+        // The root is welded to the ground.
+        assert_eq!(m.joints[3].name.text, "ground_weld");
+        assert_eq!(m.joints[3].child.text, "base");
+    }
+
+    #[test]
+    fn the_inertia_is_rotated_into_the_link_frame_and_damping_is_read() {
+        // A quarter turn about z takes the inertial x axis to the link's y axis.
+        let m = import_text(
+            "rotated",
+            r#"<robot name="r"><link name="base"/>
+                 <link name="arm"><inertial>
+                   <origin xyz="0.1 0.2 0.3" rpy="0 0 1.5707963267948966"/>
+                   <mass value=" 2.5 "/>
+                   <inertia ixx="1" ixy="0" ixz="0" iyy="2" iyz="0" izz="3"/>
+                 </inertial></link>
+                 <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+                   <origin rpy="0.5 -0.25 1" xyz="1 2 3"/><dynamics damping="0.7" friction="1"/>
+                 </joint>
+                 <joint name="k" type="revolute"><parent link="arm"/><child link="tip"/>
+                   <dynamics damping="0"/></joint>
+                 <link name="tip"/>
+               </robot>"#,
+        )
+        .expect("imports");
+        let arm = &m.bodies[1];
+        assert_eq!(arm.mass.as_ref().map(constant), Some(2.5));
+        assert_eq!(arm.com.as_ref().map(vector3), Some([0.1, 0.2, 0.3]));
+        let i = inertia(arm);
+        let expected = [[2.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 3.0]];
+        for (row, expected_row) in i.iter().zip(expected) {
+            for (x, e) in row.iter().zip(expected_row) {
+                assert!((x - e).abs() < 1e-15, "{i:?}");
+            }
+        }
+        let [j, k] = [&m.joints[0], &m.joints[1]];
+        assert_eq!(rpy(j), [0.5, -0.25, 1.0]);
+        assert_eq!(j.at.as_ref().map(vector3), Some([1.0, 2.0, 3.0]));
+        assert_eq!(j.damping.as_ref().map(constant), Some(0.7));
+        assert!(k.damping.is_none(), "zero damping is no damping");
+        assert!(j.armature.is_none());
+    }
+
+    #[test]
+    fn comments_namespaces_and_other_elements_are_passed_over() {
+        let m = import_text(
+            "namespaces",
+            &format!(
+                r#"<?xml version="1.0" encoding="utf-8"?>
+                   <!-- exported by hand -->
+                   <robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+                     <xacro:property name="length" value="1"/>
+                     <material name="grey"><color rgba="0.5 0.5 0.5 1"/></material>
+                     <link name="base"><visual><geometry><box size="1 1 1"/></geometry></visual>
+                       <!-- <inertial> left out on purpose --></link>
+                     <gazebo reference="base"><link name="not_a_link"/></gazebo>
+                     {}
+                     <joint name="j" type="revolute"><!-- a comment -->
+                       <parent link="base"/><child link="arm"/>
+                       <calibration rising="0"/><safety_controller k_velocity="1"/></joint>
+                     <transmission name="t"><joint name="j"/></transmission>
+                   </robot>"#,
+                link("arm")
+            ),
+        )
+        .expect("imports");
+        let names: Vec<&str> = m.bodies.iter().map(|b| b.name.text.as_str()).collect();
+        assert_eq!(names, ["base", "arm"]);
+        let names: Vec<&str> = m.joints.iter().map(|j| j.name.text.as_str()).collect();
+        assert_eq!(names, ["j", "ground_weld"]);
+        // Elements in a default namespace, or prefixed, are read by their local names.
+        for robot in [
+            r#"<robot xmlns="http://example.com/urdf" name="r"><link name="base"/></robot>"#,
+            r#"<u:robot xmlns:u="http://example.com/urdf" name="r"><u:link name="base"/></u:robot>"#,
+        ] {
+            let m = import_text("default-namespace", robot).expect("imports");
+            assert_eq!(m.bodies.len(), 1);
+        }
+    }
+
+    #[test]
+    fn quaternions_replace_rpy_from_urdf_1_1() {
+        // A quarter turn about z: (x, y, z, w) = (0, 0, sin π/4, cos π/4).
+        let file = |version: &str| {
+            format!(
+                r#"<robot name="r" {version}><link name="base"/>{}
+                   <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+                   <origin quat_xyzw="0 0 0.7071067811865476 0.7071067811865476"/></joint>
+                   </robot>"#,
+                link("arm")
+            )
+        };
+        let m = import_text("quaternion", &file(r#"version="1.1""#)).expect("imports");
+        let [roll, pitch, yaw] = rpy(&m.joints[0]);
+        assert_eq!((roll, pitch), (0.0, 0.0));
+        assert!((yaw - std::f64::consts::FRAC_PI_2).abs() < 1e-15, "{yaw}");
+        // Before 1.1, quat_xyzw is not URDF and is passed over.
+        let m = import_text("quaternion-1-0", &file("")).expect("imports");
+        assert_eq!(rpy(&m.joints[0]), [0.0; 3]);
+        // At gimbal lock (pitch ±π/2) the turn about z takes all of roll − yaw.
+        assert_eq!(
+            quaternion_to_rpy([
+                0.0,
+                std::f64::consts::FRAC_1_SQRT_2,
+                0.0,
+                std::f64::consts::FRAC_1_SQRT_2
+            ]),
+            [0.0, std::f64::consts::FRAC_PI_2, 0.0]
+        );
+        assert_eq!(quaternion_to_rpy([0.0; 4]), [0.0; 3]);
+    }
+
+    #[test]
+    fn malformed_urdf_is_reported_at_the_element() {
+        let cases = [
+            (
+                r#"<robot name="r">
+  <link name="arm"><inertial><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+</robot>"#,
+                "at line 2, column 20: the `<inertial>` of link `arm` has no `<mass>`",
+            ),
+            (
+                r#"<robot name="r">
+  <link name="arm"><inertial><mass value="one"/></inertial></link>
+</robot>"#,
+                "at line 2, column 43: `value` of the `<mass>` of link `arm` is `one`, which is \
+                 not a number",
+            ),
+            (
+                r#"<robot name="r"><link name="a"/><link name="b"/>
+  <joint name="j" type="revolute"><origin xyz="0 0"/><parent link="a"/><child link="b"/></joint>
+</robot>"#,
+                "at line 2, column 48: `xyz` of the `<origin>` of joint `j` is `0 0`, which has 2 \
+                 numbers; it needs 3",
+            ),
+            (
+                r#"<robot name="r"><link name="a"/><link name="b"/>
+  <joint name="j" type="hinge"><parent link="a"/><child link="b"/></joint>
+</robot>"#,
+                "at line 2, column 25: joint `j` has type `hinge`, which is not a URDF joint type \
+                 (revolute, continuous, prismatic, fixed, floating, planar or spherical)",
+            ),
+            (
+                r#"<robot name="r"><link name="a"/><link name="b"/>
+  <joint name="j" type="fixed"><parent link="a"/><child link="b"/><parent link="b"/></joint>
+</robot>"#,
+                "at line 2, column 67: joint `j` has a second `<parent>`",
+            ),
+            (
+                r#"<robot name="r"><link/></robot>"#,
+                "at line 1, column 17: a `<link>` has no `name`",
+            ),
+        ];
+        for (i, (text, expected)) in cases.into_iter().enumerate() {
+            let e = import_text(&format!("malformed-urdf-{i}"), text).expect_err(expected);
+            assert_eq!(
+                e.to_string(),
+                format!("URDF file `robot.urdf` is malformed {expected}")
+            );
+        }
+    }
+
+    #[test]
+    fn limits_and_other_unread_elements_are_not_checked() {
+        // URDF requires `velocity` in `<limit>`; the import does not read limits.
+        let m = import_text(
+            "limits",
+            &format!(
+                r#"<robot name="r"><link name="base"/>{}
+                   <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+                   <limit lower="1" upper="-1"/></joint></robot>"#,
+                link("arm")
+            ),
+        )
+        .expect("imports");
+        assert_eq!(m.joints.len(), 2);
+    }
+
+    #[test]
+    fn mimic_floating_and_spherical_joints_are_refused_together() {
+        let e = import_text(
+            "refused",
+            &format!(
+                r#"<robot name="r"><link name="base"/>{}{}{}
+                   <joint name="a" type="prismatic"><parent link="base"/><child link="x"/></joint>
+                   <joint name="b" type="prismatic"><parent link="base"/><child link="y"/>
+                     <mimic joint="a" multiplier="-1"/></joint>
+                   <joint name="c" type="floating"><parent link="base"/><child link="z"/></joint>
+                   </robot>"#,
+                link("x"),
+                link("y"),
+                link("z")
+            ),
+        )
+        .expect_err("refused");
+        let messages: Vec<String> = e.into_iter().map(|e| e.to_string()).collect();
+        assert_eq!(
+            messages,
+            [
+                "URDF file `robot.urdf`: joint `b` mimics joint `a`; mimic joints are not \
+                 supported (declare it as an independent joint or make it fixed)",
+                "URDF file `robot.urdf`: joint `c` is a `floating` joint, which is not supported \
+                 (use revolute, continuous, prismatic or fixed joints)",
+            ]
         );
     }
 
