@@ -44,6 +44,23 @@ while [ $# -gt 0 ]; do
   shift
 done
 
+# The model files and the benchmarks' names, in the order of $MODELS.
+FILES=()
+NAMES=()
+for m in $MODELS; do
+  case "$m" in
+    pendulum) f=tests/data/pinocchio/pendulum.json; n=Pendulum ;;
+    double_pendulum) f=tests/data/pinocchio/double_pendulum.json; n=DoublePendulum ;;
+    planar3) f=tests/data/pinocchio/planar3.json; n=Planar3 ;;
+    ur5) f=tests/data/pinocchio/ur5.json; n=Ur5 ;;
+    panda) f=tests/data/pinocchio/panda.json; n=Panda ;;
+    quadruped) f="$HERE/quadruped.json"; n=Quadruped ;;
+    *) echo "compare.sh: unknown model $m (pendulum double_pendulum planar3 ur5 panda quadruped)" >&2; exit 2 ;;
+  esac
+  FILES+=("$f")
+  NAMES+=("$n")
+done
+
 STEP="starting"
 fail() { echo "compare.sh: FAILED while $STEP${1:+: $1}" >&2; exit 1; }
 trap 'fail "command exited with status $? (see the output above)"' ERR
@@ -111,23 +128,6 @@ if [[ " $MODELS " == *" quadruped "* ]]; then
     echo "    quadruped.json changed (the model or the exporter did): commit it" >&2
   fi
 fi
-
-# The model files and the benchmarks' names, in the order of $MODELS.
-FILES=()
-NAMES=()
-for m in $MODELS; do
-  case "$m" in
-    pendulum) f=tests/data/pinocchio/pendulum.json; n=Pendulum ;;
-    double_pendulum) f=tests/data/pinocchio/double_pendulum.json; n=DoublePendulum ;;
-    planar3) f=tests/data/pinocchio/planar3.json; n=Planar3 ;;
-    ur5) f=tests/data/pinocchio/ur5.json; n=Ur5 ;;
-    panda) f=tests/data/pinocchio/panda.json; n=Panda ;;
-    quadruped) f="$HERE/quadruped.json"; n=Quadruped ;;
-    *) fail "unknown model $m (pendulum double_pendulum planar3 ur5 panda quadruped)" ;;
-  esac
-  FILES+=("$f")
-  NAMES+=("$n")
-done
 
 if [ "$QUICK" = 1 ]; then
   PIN_ARGS=(--reps 5 --min-rep-ms 20 --warmup-ms 50)
