@@ -135,5 +135,4 @@ fn arm_at_a_wrist_singularity_keeps_full_accuracy() {
         );
         assert!(error < 1e-14 * cond, "{error} at cond {cond}");
     }
-    let _ = <Ur5 as Mechanism>::NV;
 }

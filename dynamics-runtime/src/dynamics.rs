@@ -73,15 +73,11 @@ pub fn integrate_configuration<T: Scalar>(
     let mut k_v = 0;
     let mut joints = free_joints.iter().peekable();
     while k_q < q.len() && k_v < v.len() {
-        if let Some(&&(fq, fv)) = joints.peek() {
-            if fq == k_q {
-                free_joint_step(&q[fq..fq + 7], &v[fv..fv + 6], dt, &mut out[fq..fq + 7]);
-                joints.next();
-                k_q += 7;
-                k_v += 6;
-                continue;
-            }
-            let _ = fv;
+        if let Some(&(fq, fv)) = joints.next_if(|&&(fq, _)| fq == k_q) {
+            free_joint_step(&q[fq..fq + 7], &v[fv..fv + 6], dt, &mut out[fq..fq + 7]);
+            k_q += 7;
+            k_v += 6;
+            continue;
         }
         out[k_q] = q[k_q] + v[k_v] * dt;
         k_q += 1;
