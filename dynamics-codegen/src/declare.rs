@@ -152,6 +152,24 @@ pub struct Cost {
     pub ops: crate::sym::OpCount,
 }
 
+/// Inherent constants of a mechanism with a force analysis: the names of the unknowns x
+/// (in the order `force_analysis` returns them) and the number of loop-closure equations.
+pub fn statics_constants(model: &Model) -> TokenStream {
+    let Some(statics) = &model.statics else {
+        return TokenStream::new();
+    };
+    let names = statics.unknowns.iter().map(|u| &u.name);
+    let count = statics.unknowns.len();
+    let closure = statics.closure_count();
+    quote! {
+        /// The unknowns of `force_analysis`, in order: reaction components along the axes
+        /// of each connection's first body, then driven joints' efforts.
+        pub const FORCE_UNKNOWNS: [&'static str; #count] = [#(#names),*];
+        /// The number of loop-closure equations φ(q) = 0 of the declared constraints.
+        pub const NUM_CLOSURE_EQUATIONS: usize = #closure;
+    }
+}
+
 /// The mechanism's type and its `Mechanism` implementation.
 pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
     let name = &model.name;

@@ -68,10 +68,12 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
         .collect();
     let declaration = declare::declare(&compiled.model, &costs, &runtime);
     let traits = declare::dynamics_traits(&compiled.model, &runtime);
+    let statics = declare::statics_constants(&compiled.model);
     quote! {
         #declaration
         #traits
         impl #name {
+            #statics
             #(#functions)*
         }
     }

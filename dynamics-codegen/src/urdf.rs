@@ -126,6 +126,7 @@ pub fn import(
             rotation: Some(Rotation::Rpy(joint.origin.rpy.map(number), range)),
             armature: None,
             damping: (joint.damping != 0.0).then(|| number(joint.damping)),
+            driven: None,
         });
     }
     let roots: Vec<&str> = robot
@@ -155,6 +156,7 @@ pub fn import(
             rotation: None,
             armature: None,
             damping: None,
+            driven: None,
         }),
         _ => refuse(format!(
             "expected exactly one root link (a link that is no joint's child), found {}: {}",

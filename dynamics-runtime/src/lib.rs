@@ -7,6 +7,7 @@
 
 extern crate self as dynamics_runtime;
 
+pub mod closure;
 pub mod double_double;
 pub mod dynamics;
 pub mod integrators;
@@ -14,6 +15,7 @@ pub mod mechanism;
 pub mod model;
 pub mod reference;
 pub mod scalar;
+pub mod statics;
 
 pub use double_double::DoubleDouble;
 pub use dynamics::{Dynamics, Energy};
@@ -27,3 +29,4 @@ pub use model::{
 pub use nalgebra;
 pub use reference::{Pose, Reference, Wrench};
 pub use scalar::Scalar;
+pub use statics::{ForceAnalysis, IllConditioned};

@@ -9,6 +9,7 @@ mechanism! {
     /// I_O = m L²/3 = 0.24 kg·m²; I_O θ̈ + m g l sin θ = τ.
     pub struct FallingRod;
     gravity: [0.0, -9.81, 0.0];
+    force_analysis: planar;
 
     /// The rod, lying along −y of its frame.
     body rod { mass: 2.0, com: [0.0, -0.3, 0.0], shape: rod(length: 0.6, axis: y) }

@@ -13,6 +13,8 @@
 //! | `forward_dynamics(q, v, tau)` | q̈ = M⁻¹(τ + Q − C q̇ − g − b q̇) | [`aba`] or [`crba`] + [`ldlt`], whichever costs fewer operations |
 //! | `kinetic_energy(q, v)`, `potential_energy(q)` | T, V | [`energy`] |
 //! | `joint_reactions(q, v, a)` | [F; M_P] each joint transmits to its body | [`rnea`] |
+//! | `force_analysis(q, v, a)` | every reaction component and driving effort, with the pivots of R | [`statics`] + [`qr`] |
+//! | `constraint_residual(q)`, `constraint_jacobian(q)`, `constraint_bias(q, v)` | φ, Φ_q, γ of the loop closures | [`statics`] |
 //!
 //! Symbolic parameters add a `p` argument, declared loads a `loads` argument (Q).
 
@@ -22,7 +24,9 @@ pub mod crba;
 pub mod energy;
 pub mod geometry;
 pub mod ldlt;
+pub mod qr;
 pub mod rnea;
+pub mod statics;
 
 use crate::emit::{Arg, FunctionSpec, Output};
 use crate::model::Model;
@@ -309,7 +313,106 @@ pub fn expand(model: &Model, scalar_trait: syn::Path) -> Vec<Function> {
         let arrays = with_loads(vec![Array::Q, Array::V, Array::A]);
         functions.push(sig.function(g, "joint_reactions", doc, &arrays, Output::Matrix(rows)));
     }
+    if let Some(statics) = &model.statics {
+        constrained_functions(&sig, statics, &mut functions);
+    }
     functions
+}
+
+/// The force analysis and the loop-closure functions.
+fn constrained_functions(
+    sig: &Signature,
+    statics: &crate::model::statics::Statics,
+    functions: &mut Vec<Function>,
+) {
+    let model = sig.model;
+    let outputs = model.outputs;
+    let loads = model.load_inputs > 0;
+    let nv = model.nv;
+    let setup = || {
+        let g = Graph::new();
+        let transforms = geometry::joint_transforms(&g, model);
+        let inertias: Vec<_> = model
+            .bodies
+            .iter()
+            .map(|b| geometry::body_inertia(&g, b))
+            .collect();
+        (g, transforms, inertias)
+    };
+    let with_loads = |mut arrays: Vec<Array>| {
+        if loads {
+            arrays.push(Array::Loads);
+        }
+        arrays
+    };
+    if outputs.force_analysis {
+        let (g, t, i) = setup();
+        let (v, a) = (inputs(&g, Array::V, nv), inputs(&g, Array::A, nv));
+        let sweep = rnea::SweepInputs {
+            velocity: &v,
+            acceleration: &a,
+            gravity: true,
+            loads,
+        };
+        let (matrix, rhs) = statics::balance_equations(&g, model, statics, &t, &i, &sweep);
+        let (x, pivots) = qr::solve(&g, matrix, rhs);
+        let names: Vec<&str> = statics.unknowns.iter().map(|u| u.name.as_str()).collect();
+        let doc = format!(
+            "Force analysis: every reaction component and driving effort x = ({}) at the \
+             motion (`q`, `v`, `a`), from each body's balance equations A(q) x = b(q, q̇, q̈) \
+             solved by Givens QR; returns (x, diagonal of R). Components are along the axes of \
+             the connection's first body; each acts on the second body and, opposite, on the \
+             first. A singular A (a toggle or dead-centre position) gives a zero pivot or \
+             non-finite values: check with `ForceAnalysis::checked`.",
+            names.join(", ")
+        );
+        let arrays = with_loads(vec![Array::Q, Array::V, Array::A]);
+        functions.push(sig.function(
+            g,
+            "force_analysis",
+            doc,
+            &arrays,
+            Output::Tuple(vec![Output::Vector(x), Output::Vector(pivots)]),
+        ));
+    }
+    if outputs.constraints && statics.closure_count() > 0 {
+        let (g, t, _) = setup();
+        let phi = statics::closure_residual(&g, model, statics, &t);
+        let doc = "Loop closure φ(q): zero when every declared constraint is satisfied (each \
+                   component along a reaction direction, in the first body's frame)."
+            .to_owned();
+        functions.push(sig.function(
+            g,
+            "constraint_residual",
+            doc,
+            &[Array::Q],
+            Output::Vector(phi),
+        ));
+        let (g, t, _) = setup();
+        let phi = statics::closure_residual(&g, model, statics, &t);
+        let jacobian = statics::closure_jacobian(&g, model, &phi);
+        let doc = "Constraint Jacobian Φ_q = ∂φ/∂q (one row per closure equation).".to_owned();
+        functions.push(sig.function(
+            g,
+            "constraint_jacobian",
+            doc,
+            &[Array::Q],
+            Output::Matrix(jacobian),
+        ));
+        let (g, t, _) = setup();
+        let phi = statics::closure_residual(&g, model, statics, &t);
+        let (_, gamma) = statics::closure_rates(&g, &phi);
+        let doc = "Constraint acceleration term γ(q, q̇) = −(∂(Φ_q q̇)/∂q) q̇: the accelerations \
+                   that keep the loops closed satisfy Φ_q q̈ = γ."
+            .to_owned();
+        functions.push(sig.function(
+            g,
+            "constraint_bias",
+            doc,
+            &[Array::Q, Array::V],
+            Output::Vector(gamma),
+        ));
+    }
 }
 
 #[cfg(test)]

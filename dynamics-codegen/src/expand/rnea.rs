@@ -215,7 +215,7 @@ pub fn joint_dofs(kind: &JointKind) -> usize {
 }
 
 /// One step of the forward sweep: the body's motion from its parent's.
-fn forward(
+pub(crate) fn forward(
     g: &Graph,
     joint: &crate::model::Joint,
     t: &JointTransform,

@@ -15,6 +15,7 @@ mod diagnostics;
 pub(crate) mod linear;
 mod resolve;
 mod rules;
+pub mod statics;
 mod tree;
 pub mod value;
 
@@ -47,11 +48,17 @@ pub struct Outputs {
     pub energy: bool,
     /// The wrench each joint transmits to its child body.
     pub reactions: bool,
+    /// Statics and mechanism force analysis: A(q) x = b for every reaction component and
+    /// driving effort, from each body's balance equations.
+    pub force_analysis: bool,
+    /// The loop-closure equations φ(q) = 0 of the declared constraints, their Jacobian Φ_q
+    /// and the acceleration term γ with Φ_q q̈ = γ.
+    pub constraints: bool,
 }
 
 impl Outputs {
     /// The output names the language accepts, with their meaning.
-    pub const NAMES: [&'static str; 10] = [
+    pub const NAMES: [&'static str; 12] = [
         "inverse_dynamics",
         "mass_matrix",
         "coriolis",
@@ -62,6 +69,8 @@ impl Outputs {
         "forward_dynamics_ldlt",
         "energy",
         "reactions",
+        "force_analysis",
+        "constraints",
     ];
 
     /// Every output.
@@ -77,6 +86,24 @@ impl Outputs {
             forward_dynamics_ldlt: false,
             energy: true,
             reactions: true,
+            force_analysis: false,
+            constraints: false,
+        }
+    }
+
+    /// The default of a mechanism with constraints (closed loops or supports): the force
+    /// analysis, the loop closure, and what the closed mechanism's forward dynamics needs
+    /// from the tree (M and the bias forces, combined with the closure by
+    /// `dynamics_runtime::closure`), and the energies. The other open-tree functions would
+    /// ignore the constraints, so they are generated only when asked for by name.
+    pub fn constrained() -> Self {
+        Outputs {
+            force_analysis: true,
+            constraints: true,
+            mass_matrix: true,
+            bias: true,
+            energy: true,
+            ..Outputs::default()
         }
     }
 
@@ -93,6 +120,8 @@ impl Outputs {
             "forward_dynamics_ldlt" => &mut self.forward_dynamics_ldlt,
             "energy" => &mut self.energy,
             "reactions" => &mut self.reactions,
+            "force_analysis" => &mut self.force_analysis,
+            "constraints" => &mut self.constraints,
             _ => return false,
         };
         *flag = true;
@@ -294,6 +323,10 @@ pub struct Model {
     pub skip_triangle_inequality: bool,
     /// Files the declaration was read from (URDF), for rebuild tracking.
     pub source_files: Vec<String>,
+    /// The connections, unknowns and balance equations of the force analysis, and the
+    /// declared constraints' closure equations (present when a constraint is declared or
+    /// a force-analysis output is asked for).
+    pub statics: Option<statics::Statics>,
 }
 
 /// Validates a parsed mechanism. Every rule runs; all errors are returned together.

@@ -288,7 +288,15 @@ pub(crate) fn resolve(mechanism: &syntax::Mechanism, diagnostics: &mut Diagnosti
         .iter()
         .map(|j| resolve_joint(&mut r, j))
         .collect();
-    let outputs = resolve_outputs(&mechanism.outputs, r.diagnostics);
+    let mut outputs = resolve_outputs(
+        &mechanism.outputs,
+        !mechanism.constraints.is_empty(),
+        r.diagnostics,
+    );
+    // Declaring how to analyse forces (`force_analysis: planar;`) asks for the analysis.
+    if mechanism.outputs.is_none() && mechanism.analysis.is_some() {
+        outputs.force_analysis = true;
+    }
     let mut skip_triangle_inequality = false;
     for allow in &mechanism.allow {
         match allow.text.as_str() {
@@ -415,9 +423,17 @@ fn resolve_joint(r: &mut Resolver, joint: &syntax::Joint) -> ResolvedJoint {
     }
 }
 
-fn resolve_outputs(names: &Option<Vec<syntax::Name>>, diagnostics: &mut Diagnostics) -> Outputs {
+fn resolve_outputs(
+    names: &Option<Vec<syntax::Name>>,
+    constrained: bool,
+    diagnostics: &mut Diagnostics,
+) -> Outputs {
     let Some(names) = names else {
-        return Outputs::all();
+        return if constrained {
+            Outputs::constrained()
+        } else {
+            Outputs::all()
+        };
     };
     let mut outputs = Outputs::default();
     for name in names {

@@ -132,7 +132,9 @@ pub(crate) fn build(
         });
     }
     let nominal = resolved.nominal_parameters();
-    check_coordinates_have_inertia(&bodies, resolved, &nominal, d);
+    if resolved.outputs.any_dynamics() {
+        check_coordinates_have_inertia(&bodies, resolved, &nominal, d);
+    }
     let mut loads = Vec::new();
     let mut offset = 0;
     for load in &mechanism.loads {
@@ -184,6 +186,14 @@ pub(crate) fn build(
             damping: j.damping.0.clone(),
         })
         .collect();
+    let locate = |name: &str| -> Option<(Option<usize>, [[f64; 3]; 3], Vec3)> {
+        if name == GROUND {
+            return Some((None, IDENTITY, zero3()));
+        }
+        let at = attached[*body_index.get(name)?].clone()?;
+        Some((at.body, at.rotation, at.translation))
+    };
+    let statics = super::statics::build(mechanism, resolved, &bodies, &locate, d);
     Some(Model {
         name: mechanism.name.clone(),
         visibility: mechanism.visibility.clone(),
@@ -200,6 +210,7 @@ pub(crate) fn build(
         declared_joints,
         skip_triangle_inequality: resolved.skip_triangle_inequality,
         source_files: Vec::new(),
+        statics,
     })
 }
 

@@ -35,6 +35,7 @@
 //! `g.add(a, g.mul(b, c))` read like the formula.
 
 mod analysis;
+mod derivative;
 mod linalg;
 mod rules;
 

@@ -142,6 +142,66 @@ pub struct Mechanism {
     pub joints: Vec<Joint>,
     /// Applied loads, in declaration order.
     pub loads: Vec<Load>,
+    /// Supports and loop-closing connections, in declaration order.
+    pub constraints: Vec<Constraint>,
+    /// `force_analysis: planar;` or `spatial;` (planar when absent).
+    pub analysis: Option<(AnalysisPlane, Span)>,
+}
+
+/// How many balance equations each body contributes to the force analysis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AnalysisPlane {
+    /// Motion in the world xy plane: ΣF_x = m a_Gx, ΣF_y = m a_Gy, ΣM_z = I α (3 per body).
+    Planar,
+    /// Three-dimensional: six balance equations per body.
+    Spatial,
+}
+
+/// The kinds of support or loop-closing connection between two bodies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ConstraintKind {
+    /// A pin: the two points coincide. Planar: two force components, no couple; spatial: a
+    /// hinge about `axis`, three forces and the two couples normal to the axis.
+    Pin,
+    /// A ball joint (spatial): the points coincide, three force components, no couple.
+    Ball,
+    /// A roller or a slider on a line: the second point stays on the line through the first
+    /// point normal to `normal`: one force along the normal.
+    Roller,
+    /// A prismatic connection sliding along `axis`: the forces normal to the axis and every
+    /// couple (planar: one normal force and the couple about z).
+    Prismatic,
+    /// A weld: no relative motion, every force and couple component.
+    Weld,
+}
+
+/// One end of a constraint: a body (or `ground`) and the point on it, in its frame.
+#[derive(Clone, Debug)]
+pub struct ConstraintEnd {
+    /// The body, or `ground`.
+    pub body: Name,
+    /// The point in the body's frame (the origin when absent).
+    pub at: Option<Vector>,
+}
+
+/// `constraint name: kind(a at [..], b at [..]) { normal: .. | axis: .. };`: a support or a
+/// connection closing a kinematic loop. Directions are given in the first body's frame.
+#[derive(Clone, Debug)]
+pub struct Constraint {
+    /// Doc comments.
+    pub docs: Vec<String>,
+    /// The constraint's name.
+    pub name: Name,
+    /// What it transmits.
+    pub kind: ConstraintKind,
+    /// Where the kind was written.
+    pub kind_span: Span,
+    /// The first body, whose frame the directions and the reaction components are given in.
+    pub first: ConstraintEnd,
+    /// The second body; the reaction acts on it, its opposite on the first.
+    pub second: ConstraintEnd,
+    /// The roller's normal, the prismatic's sliding axis, or the spatial pin's hinge axis.
+    pub direction: Option<Axis>,
 }
 
 /// `urdf: "path";` with `floating_base: bool;`.
@@ -308,6 +368,9 @@ pub struct Joint {
     pub armature: Option<Number>,
     /// Viscous friction coefficient.
     pub damping: Option<Number>,
+    /// `driven: true`: an actuator drives the coordinate, so the force analysis solves for
+    /// its effort (in a mechanism without constraints every joint is driven).
+    pub driven: Option<(bool, Span)>,
 }
 
 /// What an applied load is made of.

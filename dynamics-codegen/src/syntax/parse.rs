@@ -26,6 +26,8 @@ impl Parse for Mechanism {
             bodies: Vec::new(),
             joints: Vec::new(),
             loads: Vec::new(),
+            constraints: Vec::new(),
+            analysis: None,
         };
         let mut floating_base: Option<bool> = None;
         while !input.is_empty() {
@@ -50,13 +52,16 @@ impl Parse for Mechanism {
             let keyword: Ident = input.parse().map_err(|e| {
                 syn::Error::new(
                     e.span(),
-                    "expected `pub struct Name;`, a setting (`gravity: ...;`), `body`, `joint` or `load`",
+                    "expected `pub struct Name;`, a setting (`gravity: ...;`), `body`, `joint`, `load` or `constraint`",
                 )
             })?;
             match keyword.to_string().as_str() {
                 "body" if input.peek(Ident) => mechanism.bodies.push(parse_body(input, docs)?),
                 "joint" if input.peek(Ident) => mechanism.joints.push(parse_joint(input, docs)?),
                 "load" if input.peek(Ident) => mechanism.loads.push(parse_load(input, docs)?),
+                "constraint" if input.peek(Ident) => {
+                    mechanism.constraints.push(parse_constraint(input, docs)?)
+                }
                 setting => {
                     input.parse::<Token![:]>()?;
                     match setting {
@@ -69,12 +74,27 @@ impl Parse for Mechanism {
                             mechanism.urdf = Some(UrdfSource { path, floating_base: false });
                         }
                         "floating_base" => floating_base = Some(input.parse::<LitBool>()?.value),
+                        "force_analysis" => {
+                            let plane: Ident = input.parse()?;
+                            let kind = match plane.to_string().as_str() {
+                                "planar" => AnalysisPlane::Planar,
+                                "spatial" => AnalysisPlane::Spatial,
+                                other => {
+                                    return Err(syn::Error::new(
+                                        plane.span(),
+                                        format!("unknown force analysis `{other}`; expected planar or spatial"),
+                                    ))
+                                }
+                            };
+                            mechanism.analysis = Some((kind, plane.span()));
+                        }
                         _ => {
                             return Err(syn::Error::new(
                                 keyword.span(),
                                 format!(
                                     "unknown setting `{setting}`; expected one of gravity, outputs, \
-                                     parameters, allow, urdf, floating_base (or `body`, `joint`, `load`)"
+                                     parameters, allow, urdf, floating_base, force_analysis (or `body`, `joint`, `load`, \
+                                     `constraint`)"
                                 ),
                             ))
                         }
@@ -587,6 +607,7 @@ fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
         rotation: None,
         armature: None,
         damping: None,
+        driven: None,
     };
     if input.peek(Token![;]) {
         input.parse::<Token![;]>()?;
@@ -599,11 +620,20 @@ fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
             "rotation" => joint.rotation = Some(parse_rotation(content)?),
             "armature" => joint.armature = Some(parse_number(content)?),
             "damping" => joint.damping = Some(parse_number(content)?),
+            "driven" => {
+                let flag: LitBool = content.parse()?;
+                joint.driven = Some((flag.value, flag.span()));
+            }
             _ => return Ok(false),
         }
         Ok(true)
     })
-    .map_err(|e| with_hint(e, "joint fields are axis, at, rotation, armature, damping"))?;
+    .map_err(|e| {
+        with_hint(
+            e,
+            "joint fields are axis, at, rotation, armature, damping, driven",
+        )
+    })?;
     Ok(joint)
 }
 
@@ -646,6 +676,75 @@ fn parse_load(input: ParseStream, docs: Vec<String>) -> syn::Result<Load> {
         kind,
         body,
         at,
+    })
+}
+
+/// `constraint name: kind(a at [..], b at [..]) { normal: .. | axis: .. };`.
+fn parse_constraint(input: ParseStream, docs: Vec<String>) -> syn::Result<Constraint> {
+    let name = parse_name(input)?;
+    input.parse::<Token![:]>()?;
+    let kind_ident: Ident = input.parse()?;
+    let kind = match kind_ident.to_string().as_str() {
+        "pin" => ConstraintKind::Pin,
+        "ball" => ConstraintKind::Ball,
+        "roller" | "slider" => ConstraintKind::Roller,
+        "prismatic" => ConstraintKind::Prismatic,
+        "weld" => ConstraintKind::Weld,
+        other => {
+            return Err(syn::Error::new(
+                kind_ident.span(),
+                format!("unknown constraint `{other}`; expected pin, ball, roller, slider, prismatic or weld"),
+            ))
+        }
+    };
+    let content;
+    parenthesized!(content in input);
+    let end = |content: ParseStream| -> syn::Result<ConstraintEnd> {
+        let body = parse_name(content)?;
+        let mut at = None;
+        if content.peek(Ident) {
+            let at_kw: Ident = content.parse()?;
+            if at_kw != "at" {
+                return Err(syn::Error::new(at_kw.span(), "expected `at [x, y, z]`"));
+            }
+            at = Some(parse_vector(content)?);
+        }
+        Ok(ConstraintEnd { body, at })
+    };
+    let first = end(&content)?;
+    content.parse::<Token![,]>()?;
+    let second = end(&content)?;
+    comma_unless_end(&content)?;
+    if !content.is_empty() {
+        return Err(
+            content.error("a constraint connects exactly two bodies: `(a at [..], b at [..])`")
+        );
+    }
+    let mut direction = None;
+    if input.peek(syn::token::Brace) {
+        parse_fields(input, |field, content| {
+            match field.to_string().as_str() {
+                "normal" | "axis" => direction = Some(parse_axis(content)?),
+                _ => return Ok(false),
+            }
+            Ok(true)
+        })
+        .map_err(|e| {
+            with_hint(
+                e,
+                "constraint fields are normal (roller) and axis (prismatic, spatial pin)",
+            )
+        })?;
+    }
+    input.parse::<Option<Token![;]>>()?;
+    Ok(Constraint {
+        docs,
+        name,
+        kind,
+        kind_span: kind_ident.span(),
+        first,
+        second,
+        direction,
     })
 }
 
