@@ -290,7 +290,11 @@ fn op_counts_are_exported_for_the_requested_functions_only() {
         .iter()
         .find(|f| f.name == "inverse_dynamics")
         .expect("generated");
-    assert!(puma.mul <= 224 && puma.div == 0, "{puma:?}");
+    // Murray and Neuman's ARM: 224 multiplications, 174 additions.
+    assert!(
+        puma.mul <= 224 && puma.add <= 174 && puma.div == 0,
+        "{puma:?}"
+    );
 }
 
 #[test]

@@ -195,3 +195,148 @@ pub fn wrench_to_parent(g: &Graph, t: &JointTransform, force: Vec3, moment: Vec3
         .add(g, t.origin_in_parent.cross(g, f));
     (f, m)
 }
+
+/// Whether m, h and I_P of a body are all numbers (no declared parameter).
+pub fn is_constant_inertia(g: &Graph, b: &BodyInertia) -> bool {
+    let constant = |n: &Node| g.constant_value(*n).is_some();
+    constant(&b.mass)
+        && b.first_moment.0.iter().all(constant)
+        && b.inertia_about_origin.0.iter().flatten().all(constant)
+}
+
+/// A body's inertia (m, h, I_P) with its mass centre and I_G recomputed when m is a
+/// positive number.
+pub fn inertia_from(g: &Graph, mass: Node, first_moment: Vec3, about_origin: Mat3) -> BodyInertia {
+    let mass_centre = match g.constant_value(mass) {
+        Some(m) if m > 0.0 => {
+            let c = first_moment.scale(g, g.constant(1.0 / m));
+            let c_hat = c.cross_matrix(g);
+            // I_P = I_G − m ĉ², so I_G = I_P + m ĉ².
+            Some((c, about_origin.add(g, c_hat.mul(g, c_hat).scale(g, mass))))
+        }
+        _ => None,
+    };
+    BodyInertia {
+        mass,
+        first_moment,
+        inertia_about_origin: about_origin,
+        mass_centre,
+    }
+}
+
+/// A share of a body's inertia that its joint's motion leaves unchanged, so that it moves
+/// as if fixed to the parent (Khalil and Kleinfinger's regrouping of inertial parameters):
+/// about a revolute axis s, the mass m, a first moment along s and an inertia Y (1 − s sᵀ)
+/// (the kinetic energy ½ Y |ω × s|² and the potential energy do not depend on q or q̇);
+/// along a prismatic axis, a pure inertia with no mass (its angular motion is the parent's).
+#[derive(Clone, Copy, Debug)]
+pub struct Share {
+    /// Mass.
+    pub mass: Node,
+    /// First moment about P, in the body frame.
+    pub first_moment: Vec3,
+    /// Inertia about P, in the body frame.
+    pub inertia: Mat3,
+}
+
+/// The shares of a body that its joint lets it hand to its parent without changing any
+/// joint force: for a revolute joint, the mass with the first moment along the axis, and
+/// inertias Y (1 − s sᵀ) with Y = 0 or, for a coordinate axis, Y one of the two diagonal
+/// entries across the axis (which then vanishes from the body); for a prismatic joint, all
+/// of I_P. Empty for a free joint or a body whose inertia is not all numbers.
+pub fn movable_shares(g: &Graph, joint: &model::Joint, inertia: &BodyInertia) -> Vec<Share> {
+    if !is_constant_inertia(g, inertia) {
+        return Vec::new();
+    }
+    let zero = g.zero();
+    match joint.kind {
+        JointKind::Revolute { axis_in_joint } => {
+            let s = Vec3::constant(g, axis_in_joint);
+            let along = s.scale(g, s.dot(g, inertia.first_moment));
+            let across =
+                Mat3::identity(g).sub(g, Mat3::from_rows([0, 1, 2].map(|i| s.scale(g, s.get(i)))));
+            let mut ys = vec![zero];
+            if axis_in_joint.iter().filter(|a| **a != 0.0).count() == 1 {
+                let k = axis_in_joint.iter().position(|a| *a != 0.0).unwrap_or(2);
+                for i in [(k + 1) % 3, (k + 2) % 3] {
+                    let y = inertia.inertia_about_origin.get(i, i);
+                    if y != zero && !ys.contains(&y) {
+                        ys.push(y);
+                    }
+                }
+            }
+            let mut shares = Vec::new();
+            for &y in &ys {
+                for with_mass in [false, true] {
+                    if y == zero && !with_mass {
+                        continue;
+                    }
+                    let (mass, first_moment) = if with_mass {
+                        (inertia.mass, along)
+                    } else {
+                        (zero, Vec3::zero(g))
+                    };
+                    shares.push(Share {
+                        mass,
+                        first_moment,
+                        inertia: across.scale(g, y),
+                    });
+                }
+            }
+            shares
+        }
+        JointKind::Prismatic { .. } => vec![Share {
+            mass: zero,
+            first_moment: Vec3::zero(g),
+            inertia: inertia.inertia_about_origin,
+        }],
+        JointKind::Free => Vec::new(),
+    }
+}
+
+/// Moves `share` of body `child` to its parent (`None`: the ground, which drops it): the
+/// child keeps the rest; the parent gains m, h + m r + R h_s and
+/// R I_s Rᵀ − m r̂² − (r̂ ĥ' + ĥ' r̂) (h' = R h_s), the share's inertia carried to the parent
+/// frame (R, the joint's placement rotation, stands for E: the share is invariant under the
+/// joint's motion) and shifted from P_child to P_parent. Returns `None` when the joint's
+/// offset is not a number.
+pub fn move_share(
+    g: &Graph,
+    joint: &model::Joint,
+    child: &BodyInertia,
+    parent: Option<&BodyInertia>,
+    share: &Share,
+) -> Option<(BodyInertia, Option<BodyInertia>)> {
+    let kept = inertia_from(
+        g,
+        g.sub(child.mass, share.mass),
+        child.first_moment.sub(g, share.first_moment),
+        child.inertia_about_origin.sub(g, share.inertia),
+    );
+    let Some(parent) = parent else {
+        return Some((kept, None));
+    };
+    if !is_constant_inertia(g, parent) {
+        return None;
+    }
+    let r = vector(g, &joint.translation_in_parent);
+    if r.0.iter().any(|n| g.constant_value(*n).is_none()) {
+        return None;
+    }
+    let rotation = Mat3::constant(g, joint.rotation_in_parent);
+    let m = share.mass;
+    let h = rotation.mul_vec(g, share.first_moment);
+    let (r_hat, h_hat) = (r.cross_matrix(g), h.cross_matrix(g));
+    let inertia = rotation
+        .mul(g, share.inertia)
+        .mul(g, rotation.transpose())
+        .sub(g, r_hat.mul(g, r_hat).scale(g, m))
+        .sub(g, r_hat.mul(g, h_hat).add(g, h_hat.mul(g, r_hat)));
+    let gained = inertia_from(
+        g,
+        g.add(parent.mass, m),
+        parent.first_moment.add(g, r.scale(g, m)).add(g, h),
+        parent.inertia_about_origin.add(g, inertia),
+    );
+    Some((kept, Some(gained)))
+}

@@ -30,10 +30,18 @@
 //! (E_c F_c, E_c M_c + r_c × E_c F_c), and τ_i = s_iᵀ f_i (the moment for a revolute joint,
 //! the force for a prismatic one, the whole wrench for a free joint), plus armature · q̈ and
 //! damping · q̇.
+//!
+//! τ itself is computed over base inertial parameters (Khalil and Kleinfinger's regrouping,
+//! done at compile time on numbers): the share of a body that its joint's motion leaves
+//! unchanged (about a revolute axis s: the mass, the first moment along s and an inertia
+//! Y (1 − s sᵀ); along a prismatic axis: the rotational inertia) moves as if fixed to the
+//! parent, so it is added to the parent's inertia (or dropped at the fixed base). τ is
+//! unchanged, the per-body wrenches are not; the joint wrenches ([`Sweep::wrenches`]) come
+//! from the declared inertias.
 
 use super::geometry::{self, BodyInertia, JointTransform};
 use crate::model::{JointKind, LoadKind, Model};
-use crate::sym::{Array, Graph, Mat3, Node, Vec3};
+use crate::sym::{Array, Graph, Mat3, Node, Op, Vec3};
 
 /// The motion of a body: ω, α and the classical acceleration a_P of its origin, in its frame.
 #[derive(Clone, Copy, Debug)]
@@ -139,6 +147,10 @@ pub fn with_gravity(
 }
 
 /// Runs the Newton–Euler sweeps.
+///
+/// The joint wrenches are those of the bodies as declared. The joint forces τ come from a
+/// second backward sweep over the base inertial parameters ([`base_inertias`]), which give
+/// the same τ with fewer operations; its wrenches are not the joints' (and go unused).
 pub fn sweep(
     g: &Graph,
     model: &Model,
@@ -157,53 +169,228 @@ pub fn sweep(
         let parent = body.parent.map_or(base, |p| motions[p]);
         motions.push(forward(g, &body.joint, &transforms[i], parent, inputs));
     }
-    let mut wrenches: Vec<(Vec3, Vec3)> = motions
+    let loads = load_wrenches(g, model, inputs.loads);
+    // The wrench each body needs for its own motion, less the loads on it.
+    let own = |i: usize, inertia: &BodyInertia| {
+        let (force, moment) = body_wrench(g, &motions[i], inertia);
+        (force.sub(g, loads[i].0), moment.sub(g, loads[i].1))
+    };
+    let declared: Vec<(Vec3, Vec3)> = inertias
         .iter()
-        .zip(inertias)
-        .map(|(motion, inertia)| body_wrench(g, motion, inertia))
+        .enumerate()
+        .map(|(i, b)| own(i, b))
         .collect();
-    for (w, (f, m)) in wrenches
-        .iter_mut()
-        .zip(load_wrenches(g, model, inputs.loads))
-    {
-        *w = (w.0.sub(g, f), w.1.sub(g, m));
+    let declared = Backward::new(g, model, transforms, inputs, declared);
+    let regrouped = base_inertias(g, model, transforms, inputs, inertias, &declared, own);
+    Sweep {
+        tau: regrouped.tau,
+        wrenches: declared.joint,
     }
-    for i in (0..model.bodies.len()).rev() {
-        if let Some(p) = model.bodies[i].parent {
-            let (f, m) =
-                geometry::wrench_to_parent(g, &transforms[i], wrenches[i].0, wrenches[i].1);
-            wrenches[p] = (wrenches[p].0.add(g, f), wrenches[p].1.add(g, m));
+}
+
+/// The backward sweep: each joint's wrench f_i is the body's own wrench plus its children's
+/// joint wrenches carried to its frame (from the leaves to the root), and τ_i = s_iᵀ f_i.
+/// Kept per body, so that a change of a few bodies' own wrenches redoes only their paths to
+/// the root.
+#[derive(Clone)]
+struct Backward {
+    /// Each body's own wrench [F; M_P] (loads subtracted).
+    own: Vec<(Vec3, Vec3)>,
+    /// f_i, the wrench each joint transmits to its body, in the body frame about P.
+    joint: Vec<(Vec3, Vec3)>,
+    /// f_i carried to the parent's frame, about the parent's origin.
+    carried: Vec<(Vec3, Vec3)>,
+    /// τ.
+    tau: Vec<Node>,
+}
+
+impl Backward {
+    fn new(
+        g: &Graph,
+        model: &Model,
+        transforms: &[JointTransform],
+        inputs: &SweepInputs,
+        own: Vec<(Vec3, Vec3)>,
+    ) -> Self {
+        let n = own.len();
+        let mut sweep = Backward {
+            joint: own.clone(),
+            carried: own.clone(),
+            own,
+            tau: vec![g.zero(); model.nv],
+        };
+        sweep.redo(g, model, transforms, inputs, vec![true; n]);
+        sweep
+    }
+
+    /// The sweep with the own wrenches of some bodies replaced.
+    fn with(
+        &self,
+        g: &Graph,
+        model: &Model,
+        transforms: &[JointTransform],
+        inputs: &SweepInputs,
+        changes: &[(usize, (Vec3, Vec3))],
+    ) -> Self {
+        let mut sweep = self.clone();
+        let mut dirty = vec![false; self.own.len()];
+        for &(i, wrench) in changes {
+            sweep.own[i] = wrench;
+            let mut body = Some(i);
+            while let Some(k) = body {
+                dirty[k] = true;
+                body = model.bodies[k].parent;
+            }
         }
+        sweep.redo(g, model, transforms, inputs, dirty);
+        sweep
     }
-    let mut tau = vec![g.zero(); model.nv];
-    for (body, (force, moment)) in model.bodies.iter().zip(&wrenches) {
-        let joint = &body.joint;
-        let k = joint.idx_v;
-        match joint.kind {
-            JointKind::Revolute { axis_in_joint } => {
-                tau[k] = Vec3::constant(g, axis_in_joint).dot(g, *moment)
-            }
-            JointKind::Prismatic { axis_in_joint } => {
-                tau[k] = Vec3::constant(g, axis_in_joint).dot(g, *force)
-            }
-            JointKind::Free => {
-                for j in 0..3 {
-                    tau[k + j] = force.get(j);
-                    tau[k + 3 + j] = moment.get(j);
+
+    /// Recomputes f_i, its carried form and τ_i of the `dirty` bodies (closed under
+    /// parents), children first; children are added in decreasing order.
+    fn redo(
+        &mut self,
+        g: &Graph,
+        model: &Model,
+        transforms: &[JointTransform],
+        inputs: &SweepInputs,
+        dirty: Vec<bool>,
+    ) {
+        for i in (0..self.own.len()).rev().filter(|&i| dirty[i]) {
+            let mut total = self.own[i];
+            for c in (i + 1..self.own.len()).rev() {
+                if model.bodies[c].parent == Some(i) {
+                    let (f, m) = self.carried[c];
+                    total = (total.0.add(g, f), total.1.add(g, m));
                 }
             }
-        }
-        let armature = geometry::value(g, &joint.armature);
-        let damping = geometry::value(g, &joint.damping);
-        for j in k..k + joint_dofs(&joint.kind) {
-            let extra = g.add(
-                g.mul(armature, inputs.acceleration[j]),
-                g.mul(damping, inputs.velocity[j]),
-            );
-            tau[j] = g.add(tau[j], extra);
+            self.joint[i] = total;
+            self.carried[i] = geometry::wrench_to_parent(g, &transforms[i], total.0, total.1);
+            joint_force(g, &model.bodies[i].joint, total, inputs, &mut self.tau);
         }
     }
-    Sweep { tau, wrenches }
+}
+
+/// τ of one joint from the wrench f it transmits: sᵀ f (the moment for a revolute joint,
+/// the force for a prismatic one, the whole wrench for a free joint), plus armature · q̈ and
+/// damping · q̇.
+fn joint_force(
+    g: &Graph,
+    joint: &crate::model::Joint,
+    (force, moment): (Vec3, Vec3),
+    inputs: &SweepInputs,
+    tau: &mut [Node],
+) {
+    let k = joint.idx_v;
+    match joint.kind {
+        JointKind::Revolute { axis_in_joint } => {
+            tau[k] = Vec3::constant(g, axis_in_joint).dot(g, moment);
+        }
+        JointKind::Prismatic { axis_in_joint } => {
+            tau[k] = Vec3::constant(g, axis_in_joint).dot(g, force);
+        }
+        JointKind::Free => {
+            for j in 0..3 {
+                tau[k + j] = force.get(j);
+                tau[k + 3 + j] = moment.get(j);
+            }
+        }
+    }
+    let armature = geometry::value(g, &joint.armature);
+    let damping = geometry::value(g, &joint.damping);
+    for j in k..k + joint_dofs(&joint.kind) {
+        let extra = g.add(
+            g.mul(armature, inputs.acceleration[j]),
+            g.mul(damping, inputs.velocity[j]),
+        );
+        tau[j] = g.add(tau[j], extra);
+    }
+}
+
+/// (operations, additions) that computing `outputs` costs: the products, sums and
+/// differences among the nodes they need. The same as [`Graph::op_count`] gives, by a
+/// search from the outputs that visits only those nodes (the graph holds every candidate
+/// that [`base_inertias`] tried).
+fn arithmetic_cost(g: &Graph, outputs: &[Node]) -> (usize, usize) {
+    let mut seen = vec![false; g.len()];
+    let mut stack: Vec<Node> = Vec::new();
+    for &node in outputs {
+        if !std::mem::replace(&mut seen[node.index()], true) {
+            stack.push(node);
+        }
+    }
+    let (mut ops, mut adds) = (0, 0);
+    while let Some(node) = stack.pop() {
+        let op = g.op(node);
+        match op {
+            Op::Add(..) | Op::Sub(..) => {
+                ops += 1;
+                adds += 1;
+            }
+            Op::Mul(..) => ops += 1,
+            _ => {}
+        }
+        for child in op.children() {
+            if !std::mem::replace(&mut seen[child.index()], true) {
+                stack.push(child);
+            }
+        }
+    }
+    (ops, adds)
+}
+
+/// The backward sweep over base inertial parameters: inertias that give the same joint
+/// forces τ as the declared ones (but not the same joint wrenches), with shares of each
+/// body that its joint's motion leaves unchanged moved to the parent
+/// ([`geometry::movable_shares`]; the regrouping of inertial parameters of Khalil and
+/// Kleinfinger, "Minimum operations and minimum parameters of the dynamic models of tree
+/// structure robots", 1987).
+///
+/// Bodies are visited from the leaves to the root, so that what a body receives moves on
+/// with it; for each, the share (or none) that makes τ cost the fewest operations (then
+/// additions) is taken.
+fn base_inertias(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    inputs: &SweepInputs,
+    inertias: &[BodyInertia],
+    declared: &Backward,
+    own: impl Fn(usize, &BodyInertia) -> (Vec3, Vec3),
+) -> Backward {
+    let mut current = inertias.to_vec();
+    let mut sweep = declared.clone();
+    let mut best_cost = arithmetic_cost(g, &sweep.tau);
+    for i in (0..model.bodies.len()).rev() {
+        let body = &model.bodies[i];
+        let mut best = None;
+        for share in geometry::movable_shares(g, &body.joint, &current[i]) {
+            let parent = body.parent.map(|p| &current[p]);
+            let Some((kept, gained)) =
+                geometry::move_share(g, &body.joint, &current[i], parent, &share)
+            else {
+                continue;
+            };
+            let mut changes = vec![(i, own(i, &kept))];
+            if let (Some(p), Some(gained)) = (body.parent, gained) {
+                changes.push((p, own(p, &gained)));
+            }
+            let candidate = sweep.with(g, model, transforms, inputs, &changes);
+            let cost = arithmetic_cost(g, &candidate.tau);
+            if cost < best_cost {
+                best_cost = cost;
+                best = Some((candidate, kept, gained));
+            }
+        }
+        if let Some((candidate, kept, gained)) = best {
+            sweep = candidate;
+            current[i] = kept;
+            if let (Some(p), Some(gained)) = (body.parent, gained) {
+                current[p] = gained;
+            }
+        }
+    }
+    sweep
 }
 
 /// Number of velocity coordinates of a joint.
