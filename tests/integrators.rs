@@ -2,8 +2,10 @@
 //! a stiff joint. Each test asserts that the robust method holds and shows the one that
 //! fails, with the failure as a number (growth, NaN or an error), never a crash.
 
+use dynamics_runtime::dynamics::Lagrangian;
 use dynamics_runtime::integrators::{self, Inputs, State, StepError};
-use dynamics_runtime::{mechanism, Energy};
+use dynamics_runtime::{mechanism, DoubleDouble, Energy};
+use dynamics_tests::random::SplitMix;
 use models::anchors::DoublePendulum;
 use models::seed::GyroscopicBody;
 
@@ -12,7 +14,7 @@ mechanism! {
     /// b / I_O = 1000 / 0.24 ≈ 4167 1/s, so explicit schemes need dt < 2 I_O / b = 0.48 ms.
     pub struct StiffPendulum;
     gravity: [0.0, -9.81, 0.0];
-    outputs: [forward_dynamics, energy];
+    outputs: [forward_dynamics, mass_matrix, coriolis, gravity, energy];
     body rod { mass: 2.0, com: [0.0, -0.3, 0.0], shape: rod(length: 0.6, axis: y) }
     joint pivot: revolute(ground -> rod) { axis: z, damping: 1000.0 }
 }
@@ -182,6 +184,337 @@ fn stiff_damper_explicit_blows_up_implicit_holds() {
         implicit.v[0].abs() < 0.1,
         "implicit midpoint v = {}",
         implicit.v[0]
+    );
+}
+
+mechanism! {
+    /// A Furuta pendulum: an arm turning about the vertical z, a rod swinging about the arm's
+    /// axis x at its tip. L does not depend on the arm angle q₀, so its momentum
+    /// p₀ = (M(q) q̇)₀, the angular momentum about the vertical, is conserved.
+    pub struct Furuta;
+    gravity: [0.0, 0.0, -9.81];
+    outputs: [forward_dynamics, mass_matrix, coriolis, gravity, energy];
+    body arm { mass: 1.0, com: [0.15, 0.0, 0.0], inertia: diag([1e-3, 8e-3, 8e-3]) }
+    body rod { mass: 0.5, com: [0.0, 0.0, -0.2], inertia: diag([7e-3, 7e-3, 1e-4]) }
+    joint turn: revolute(ground -> arm) { axis: z }
+    joint swing: revolute(arm -> rod) { axis: x, at: [0.3, 0.0, 0.0] }
+}
+
+mechanism! {
+    /// A free-flying brick: quaternion coordinates, which the variational midpoint rule
+    /// rejects.
+    pub struct FreeBrick;
+    gravity: [0.0, 0.0, -9.81];
+    body brick { mass: 1.0, inertia: diag([0.2, 0.3, 0.4]) }
+    joint flight: free(ground -> brick);
+}
+
+/// The variational midpoint step at relative tolerance 1e-12, as a [`Step`] (a failed step
+/// fails the test).
+fn variational<M: Lagrangian<f64>>(
+    s: &State<f64, M>,
+    inputs: &Inputs<f64, M>,
+    dt: f64,
+) -> State<f64, M> {
+    integrators::variational_midpoint(s, inputs, dt, 1e-12, 20)
+        .unwrap_or_else(|e| panic!("variational step failed: {e}"))
+}
+
+/// Largest |E − E₀| over the first and the last tenth of a run of `steps` steps (energy
+/// read every step).
+fn energy_error_first_and_last_tenth<M: Energy<f64>>(
+    start: State<f64, M>,
+    step: Step<M>,
+    dt: f64,
+    steps: usize,
+) -> (f64, f64) {
+    let tau = M::zero_velocity();
+    let (p, loads) = (M::nominal_parameters(), M::zero_loads());
+    let inputs = Inputs::<f64, M> {
+        tau: &tau,
+        parameters: &p,
+        loads: &loads,
+    };
+    let e0 = M::total_energy(&start.q, &start.v, &p);
+    let (mut s, mut first, mut last) = (start, 0.0_f64, 0.0_f64);
+    for k in 0..steps {
+        s = step(&s, &inputs, dt);
+        let error = (M::total_energy(&s.q, &s.v, &p) - e0).abs();
+        if k < steps / 10 {
+            first = first.max(error);
+        } else if k >= steps - steps / 10 {
+            last = last.max(error);
+        }
+        assert!(error.is_finite(), "non-finite energy at step {k}");
+    }
+    (first, last)
+}
+
+#[test]
+fn double_pendulum_a_million_steps_variational_bounded() {
+    // 1000 s at dt = 1 ms from both rods raised, (1.5, 1.0) rad at rest: E ≈ 0.96 J, the
+    // lower rod flips over from the first seconds, so every tenth of the run visits the same
+    // chaotic set and their energy errors are comparable. (From the lower start above, the
+    // first seconds can stay in gentler swings with a smaller error, whatever the method.)
+    let start = State::<f64, DoublePendulum> {
+        q: [1.5, 1.0],
+        v: [0.0, 0.0],
+    };
+    let (v_first, v_last) = energy_error_first_and_last_tenth(start, variational, 1e-3, 1_000_000);
+    let (s_first, s_last) =
+        energy_error_first_and_last_tenth(start, integrators::semi_implicit_euler, 1e-3, 1_000_000);
+    println!(
+        "max |ΔE| over the first / last 10⁵ of 10⁶ steps: variational midpoint {v_first:.2e} / {v_last:.2e} J, \
+         semi-implicit Euler {s_first:.2e} / {s_last:.2e} J"
+    );
+    // Symplectic for the configuration-dependent M: an O(h²) error (1.5e-3 J measured) that
+    // does not grow over the run.
+    assert!(
+        v_first.max(v_last) < 3e-3,
+        "variational midpoint |ΔE| {v_first} / {v_last} J"
+    );
+    assert!(
+        v_last < 1.5 * v_first,
+        "variational energy error grew: {v_first} -> {v_last} J"
+    );
+    // Semi-implicit Euler in (q, q̇), first order and not symplectic here: thousands of
+    // times larger.
+    assert!(
+        s_first.min(s_last) > 1e3 * v_first.max(v_last),
+        "semi-implicit Euler {s_first} / {s_last} J"
+    );
+}
+
+/// The final configuration and velocity after `seconds` of the double pendulum from
+/// (1.0, 0.5) rad at rest.
+fn double_pendulum_after(step: Step<DoublePendulum>, dt: f64, seconds: f64) -> [f64; 4] {
+    let (tau, p, loads) = ([0.0; 2], [0.0; 0], [0.0; 0]);
+    let inputs = Inputs::<f64, DoublePendulum> {
+        tau: &tau,
+        parameters: &p,
+        loads: &loads,
+    };
+    let mut s = State::<f64, DoublePendulum> {
+        q: [1.0, 0.5],
+        v: [0.0, 0.0],
+    };
+    for _ in 0..(seconds / dt).round() as usize {
+        s = step(&s, &inputs, dt);
+    }
+    [s.q[0], s.q[1], s.v[0], s.v[1]]
+}
+
+#[test]
+fn variational_midpoint_is_second_order() {
+    let truth = double_pendulum_after(integrators::rk4, 1e-4, 1.0);
+    let errors: Vec<f64> = [4e-3, 2e-3, 1e-3]
+        .iter()
+        .map(|&dt| {
+            let end = double_pendulum_after(variational, dt, 1.0);
+            (0..4)
+                .map(|k| (end[k] - truth[k]).abs())
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    let ratios = [errors[0] / errors[1], errors[1] / errors[2]];
+    println!(
+        "variational midpoint, state error after 1 s at dt = 4, 2, 1 ms: {:.2e} {:.2e} {:.2e}; ratios {ratios:.3?}",
+        errors[0], errors[1], errors[2]
+    );
+    for r in ratios {
+        assert!(
+            (3.6..4.4).contains(&r),
+            "halving dt divided the error by {r}, not 4"
+        );
+    }
+}
+
+#[test]
+fn furuta_pendulum_variational_conserves_the_vertical_angular_momentum() {
+    // Arm spinning at 2 rad/s, rod released at 1 rad: the rod's swing trades angular
+    // momentum between arm and rod, whose total about the vertical stays constant.
+    let (tau, p, loads) = ([0.0; 2], [0.0; 0], [0.0; 0]);
+    let inputs = Inputs::<f64, Furuta> {
+        tau: &tau,
+        parameters: &p,
+        loads: &loads,
+    };
+    let momentum = |s: &State<f64, Furuta>| {
+        let m = <Furuta as Lagrangian<f64>>::mass_matrix(&s.q, &p);
+        m[0][0] * s.v[0] + m[0][1] * s.v[1]
+    };
+    let start = State::<f64, Furuta> {
+        q: [0.0, 1.0],
+        v: [2.0, 0.0],
+    };
+    let (h0, e0) = (
+        momentum(&start),
+        Furuta::total_energy(&start.q, &start.v, &p),
+    );
+    let dt = 1e-2;
+    let methods: [(&str, Step<Furuta>); 3] = [
+        ("variational midpoint", variational),
+        ("implicit midpoint", |s, i, dt| {
+            integrators::implicit_midpoint(s, i, dt, 1e-13, 20).unwrap_or_else(|e| panic!("{e}"))
+        }),
+        ("semi-implicit Euler", integrators::semi_implicit_euler),
+    ];
+    let mut drifts = [0.0_f64; 3];
+    for ((name, step), drift) in methods.iter().zip(&mut drifts) {
+        let (mut s, mut energy) = (start, 0.0_f64);
+        for _ in 0..10_000 {
+            s = step(&s, &inputs, dt);
+            *drift = drift.max((momentum(&s) - h0).abs() / h0.abs());
+            energy = energy.max((Furuta::total_energy(&s.q, &s.v, &p) - e0).abs());
+        }
+        println!(
+            "Furuta, 100 s at dt = 10 ms, {name}: relative |Δp₀| {drift:.2e}, |ΔE| {energy:.2e} J"
+        );
+    }
+    assert!(
+        drifts[0] < 1e-11,
+        "variational midpoint momentum drift {}",
+        drifts[0]
+    );
+    assert!(
+        drifts[1] > 1e3 * drifts[0] && drifts[2] > 1e3 * drifts[0],
+        "{drifts:?}"
+    );
+}
+
+#[test]
+fn lagrangian_gradient_is_coriolis_transpose_minus_gravity() {
+    // ∂L/∂q = C(q, q̇)ᵀ q̇ − g(q), the identity the variational step rests on, against central
+    // differences of L = T − V built from the generated energies.
+    let p = [0.0; 0];
+    let lagrangian =
+        |q: &[f64; 2], v: &[f64; 2]| Furuta::kinetic_energy(q, v) - Furuta::potential_energy(q);
+    let mut rng = SplitMix(11);
+    let mut worst = 0.0_f64;
+    for _ in 0..20 {
+        let q: [f64; 2] = std::array::from_fn(|_| rng.uniform(-3.0, 3.0));
+        let v: [f64; 2] = std::array::from_fn(|_| rng.uniform(-3.0, 3.0));
+        let c = <Furuta as Lagrangian<f64>>::coriolis_matrix(&q, &v, &p);
+        let g = <Furuta as Lagrangian<f64>>::gravity(&q, &p);
+        for k in 0..2 {
+            let h = 1e-5;
+            let (mut plus, mut minus) = (q, q);
+            plus[k] += h;
+            minus[k] -= h;
+            let numeric = (lagrangian(&plus, &v) - lagrangian(&minus, &v)) / (2.0 * h);
+            let formula = c[0][k] * v[0] + c[1][k] * v[1] - g[k];
+            worst = worst.max((numeric - formula).abs() / (1.0 + numeric.abs()));
+        }
+    }
+    assert!(worst < 1e-8, "∂L/∂q differs from Cᵀq̇ − g by {worst}");
+}
+
+#[test]
+fn variational_forces_enter_by_lagrange_d_alembert() {
+    // A constant torque τ is the force of the potential −τ·q: the scheme is then the
+    // conservative one for L + τ·q, so E − τ·q stays bounded over a long run.
+    let (tau, p, loads) = ([0.5, 0.2], [0.0; 0], [0.0; 0]);
+    let inputs = Inputs::<f64, DoublePendulum> {
+        tau: &tau,
+        parameters: &p,
+        loads: &loads,
+    };
+    let balance = |s: &State<f64, DoublePendulum>| {
+        DoublePendulum::total_energy(&s.q, &s.v, &p) - tau[0] * s.q[0] - tau[1] * s.q[1]
+    };
+    let mut s = State::<f64, DoublePendulum> {
+        q: [0.5, 0.3],
+        v: [0.0, 0.0],
+    };
+    let b0 = balance(&s);
+    let mut worst = 0.0_f64;
+    for _ in 0..20_000 {
+        s = variational(&s, &inputs, 1e-3);
+        worst = worst.max((balance(&s) - b0).abs());
+    }
+    println!(
+        "constant torque, 20 s: |Δ(E − τ·q)| ≤ {worst:.2e} J, q = {:?}",
+        s.q
+    );
+    assert!(worst < 1e-5, "E − τ·q drifted {worst} J");
+
+    // Damping: the stiff damper at twice the explicit stability limit, like implicit midpoint.
+    let (tau, p, loads) = ([0.0], [0.0; 0], [0.0; 0]);
+    let inputs = Inputs::<f64, StiffPendulum> {
+        tau: &tau,
+        parameters: &p,
+        loads: &loads,
+    };
+    let mut s = State::<f64, StiffPendulum> { q: [0.5], v: [2.0] };
+    for _ in 0..200 {
+        s = integrators::variational_midpoint(&s, &inputs, 1e-3, 1e-12, 10).expect("converges");
+    }
+    println!(
+        "stiff damper after 0.2 s: variational midpoint v = {:e}",
+        s.v[0]
+    );
+    assert!(
+        s.v[0].abs() < 0.1 && (s.q[0] - 0.5).abs() < 0.01,
+        "{:?} {:?}",
+        s.q,
+        s.v
+    );
+}
+
+#[test]
+fn variational_midpoint_runs_in_every_scalar_and_rejects_free_joints() {
+    // 1 s of the double pendulum in f32, f64 and double-double: the three agree to the
+    // f32 and f64 precision (the differences are rounding, not the scheme).
+    fn run<T: integrators::Real>(tolerance: f64) -> [f64; 2] {
+        let (tau, p, loads): ([T; 2], [T; 0], [T; 0]) = ([T::zero(); 2], [], []);
+        let inputs = Inputs::<T, DoublePendulum> {
+            tau: &tau,
+            parameters: &p,
+            loads: &loads,
+        };
+        let mut s = State::<T, DoublePendulum> {
+            q: [T::from_f64(1.0), T::from_f64(0.5)],
+            v: [T::zero(); 2],
+        };
+        for _ in 0..500 {
+            s = integrators::variational_midpoint(
+                &s,
+                &inputs,
+                T::from_f64(2e-3),
+                T::from_f64(tolerance),
+                20,
+            )
+            .unwrap_or_else(|e| panic!("{e}"));
+        }
+        s.q.map(T::to_f64)
+    }
+    let (single, double, double_double) = (
+        run::<f32>(1e-5),
+        run::<f64>(1e-12),
+        run::<DoubleDouble>(1e-26),
+    );
+    let gap = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).abs().max((a[1] - b[1]).abs());
+    println!(
+        "after 1 s: |f32 − double-double| {:.1e}, |f64 − double-double| {:.1e}",
+        gap(single, double_double),
+        gap(double, double_double)
+    );
+    assert!(gap(single, double_double) < 1e-3);
+    assert!(gap(double, double_double) < 1e-11);
+
+    let (tau, p, loads) = ([0.0; 6], [0.0; 0], [0.0; 0]);
+    let inputs = Inputs::<f64, FreeBrick> {
+        tau: &tau,
+        parameters: &p,
+        loads: &loads,
+    };
+    let s = State::<f64, FreeBrick> {
+        q: [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0],
+        v: [0.0, 0.0, 0.0, 0.1, 0.2, 0.3],
+    };
+    assert_eq!(
+        integrators::variational_midpoint(&s, &inputs, 1e-3, 1e-12, 10).err(),
+        Some(StepError::FreeJoint)
     );
 }
 

@@ -296,6 +296,7 @@ pub fn dynamics_traits(model: &Model, rt: &TokenStream) -> TokenStream {
             }
         }
     });
+    let lagrangian = lagrangian_trait(model, rt);
     quote! {
         impl<T: #rt::Scalar> #rt::Dynamics<T> for #name {
             type Configuration = [T; #nq];
@@ -346,5 +347,42 @@ pub fn dynamics_traits(model: &Model, rt: &TokenStream) -> TokenStream {
             }
         }
         #energy
+        #lagrangian
+    }
+}
+
+/// `impl<T: Scalar> Lagrangian<T>` (M, C and g behind a trait, for variational integrators)
+/// when the mechanism generates all three beside forward dynamics, delegating to the
+/// generated `mass_matrix`, `coriolis_matrix` and `gravity`.
+fn lagrangian_trait(model: &Model, rt: &TokenStream) -> TokenStream {
+    let o = &model.outputs;
+    if !(o.forward_dynamics && o.mass_matrix && o.coriolis && o.gravity) || model.nv == 0 {
+        return TokenStream::new();
+    }
+    let name = &model.name;
+    let (nq, nv, np) = (model.nq, model.nv, model.parameters.len());
+    let p_arg = (np > 0).then(|| quote!(parameters));
+    quote! {
+        impl<T: #rt::Scalar> #rt::dynamics::Lagrangian<T> for #name {
+            #[inline]
+            fn mass_matrix(q: &[T; #nq], parameters: &[T; #np]) -> [[T; #nv]; #nv] {
+                let _ = parameters;
+                #name::mass_matrix(q, #p_arg)
+            }
+            #[inline]
+            fn coriolis_matrix(
+                q: &[T; #nq],
+                v: &[T; #nv],
+                parameters: &[T; #np],
+            ) -> [[T; #nv]; #nv] {
+                let _ = parameters;
+                #name::coriolis_matrix(q, v, #p_arg)
+            }
+            #[inline]
+            fn gravity(q: &[T; #nq], parameters: &[T; #np]) -> [T; #nv] {
+                let _ = parameters;
+                #name::gravity(q, #p_arg)
+            }
+        }
     }
 }

@@ -2,8 +2,10 @@
 //! written once for every mechanism and every scalar, without allocation.
 //!
 //! `mechanism!` implements [`Dynamics`] for every scalar when it generates forward
-//! dynamics, and [`Energy`] when it generates the energies. The associated types are the
-//! fixed-size arrays the generated functions take (`[T; NQ]`, `[T; NV]`, ...).
+//! dynamics, [`Energy`] when it generates the energies, and [`Lagrangian`] when it generates
+//! M(q), C(q, q̇) and g(q) too, the terms of M(q) q̈ + C(q, q̇) q̇ + g(q) = τ + Q − b q̇. The
+//! associated types are the fixed-size arrays the generated functions take (`[T; NQ]`,
+//! `[T; NV]`, ...).
 
 use crate::mechanism::Mechanism;
 use crate::scalar::Scalar;
@@ -51,6 +53,28 @@ pub trait Energy<T: Scalar>: Dynamics<T> {
         v: &Self::Velocity,
         parameters: &Self::Parameters,
     ) -> T;
+}
+
+/// The terms of the Lagrangian L(q, q̇) = ½ q̇ᵀ M(q) q̇ − V(q) of a generated mechanism and
+/// of its equations of motion M(q) q̈ + C(q, q̇) q̇ + g(q) = τ + Q − b q̇, for variational
+/// integrators.
+///
+/// C is the Christoffel-consistent Coriolis matrix (Ṁ − 2C skew-symmetric) and g = ∂V/∂q,
+/// so ∂L/∂q̇ = M(q) q̇ and ∂L/∂q = C(q, q̇)ᵀ q̇ − g(q) (see
+/// [`integrators::variational_midpoint`](crate::integrators::variational_midpoint)). For a
+/// free joint the velocity is the body-frame twist, not the derivative of the quaternion
+/// coordinates, and the second identity does not hold for those coordinates.
+pub trait Lagrangian<T: Scalar>: Dynamics<T> {
+    /// M(q), symmetric positive definite, armature on the diagonal.
+    fn mass_matrix(q: &Self::Configuration, parameters: &Self::Parameters) -> Self::Matrix;
+    /// C(q, q̇) with Ṁ − 2C skew-symmetric: C(q, q̇) q̇ is the Coriolis and centrifugal force.
+    fn coriolis_matrix(
+        q: &Self::Configuration,
+        v: &Self::Velocity,
+        parameters: &Self::Parameters,
+    ) -> Self::Matrix;
+    /// g(q) = ∂V/∂q, the joint forces that hold the mechanism still at q.
+    fn gravity(q: &Self::Configuration, parameters: &Self::Parameters) -> Self::Velocity;
 }
 
 /// The configuration reached from `q` by moving with velocity `v` for `dt`, written into
