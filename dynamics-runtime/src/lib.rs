@@ -10,6 +10,7 @@ extern crate self as dynamics_runtime;
 pub mod closure;
 pub mod double_double;
 pub mod dynamics;
+pub mod fast_trig;
 pub mod integrators;
 pub mod mechanism;
 pub mod model;

@@ -1,0 +1,367 @@
+//! A branch-free, table-free `sin_cos` for `f64`, within 1 ulp of std.
+//!
+//! glibc's `sincos` took 36–60 % of the small generated functions (BENCHMARKS.md, "Where
+//! the generated code spends its time"). This one is straight-line arithmetic that inlines:
+//! about 50 additions and multiplications, a few integer operations, no comparison, no
+//! lookup table, no fused multiply-add (the workspace builds for baseline x86-64, where
+//! `mul_add` is a call to the C library's `fma`: twice as slow, measured).
+//!
+//! **It is not what `<f64 as Scalar>::sin_cos` uses**, because one at a time it is not
+//! faster than glibc here: 8.5 ns against 7.6 ns per pair for independent angles, 16.5
+//! against 16.8 ns in a dependent chain (`cargo bench -p dynamics-runtime --bench
+//! sin_cos`), and level with it inside the generated functions (BENCHMARKS.md). glibc's
+//! `__sincos_fma` uses FMA and a table; scalar SSE2 code needs about 50 operations on two
+//! floating-point ports. What is faster is [`sin_cos_array`], several angles at once: the
+//! loop vectorizer evaluates two angles per SSE2 instruction, 5.1 ns per pair (1.5× glibc).
+//! Using it takes the generated code gathering its joint angles into one call.
+//!
+//! # Method
+//!
+//! 1. **Quadrant.** `n` = the integer nearest to x·2/π, by adding and subtracting
+//!    1.5·2⁵² (the sum's last two bits are n mod 4, in two's complement for n < 0). Exact
+//!    as long as |x·2/π| < 2⁵¹.
+//! 2. **Cody–Waite reduction** r = x − n·π/2 with π/2 split in three,
+//!    `PIO2_1 + PIO2_2 + PIO2_3`: two 33-bit heads and a 53-bit tail (122 bits in all;
+//!    produced by `tools/fit_sin_cos.py`). For |n| ≤ 2²⁰ the products n·PIO2_1 and
+//!    n·PIO2_2 are exact (33 + 20 bits ≤ 53), x − n·PIO2_1 is exact (Sterbenz: the two
+//!    are within a factor of two). The rest, n·(PIO2_2 + PIO2_3), is summed first into a
+//!    double-double `tail + tail_low` (Fast2Sum: |n·PIO2_2| > |n·PIO2_3|), then
+//!    `(a − r) − tail` recovers exactly the rounding error of r = a − tail (Fast2Sum again;
+//!    when |a| < |tail| the subtraction is itself exact, because a is a multiple of ulp(x)
+//!    and of 2⁻³², hence of ulp(tail) ≤ |n|·2⁻⁸⁶). Summing the tail first keeps rl below
+//!    an ulp of r (n·PIO2_3 alone reaches 2⁻⁴⁹, many ulps of r, and a first-order tail that
+//!    large costs ulps in cos). The reduced argument is the double-double r + rl, in error
+//!    by the rounding of n·PIO2_3 and the truncation of π/2: at most |n|·2⁻¹²⁰ ≤ 2⁻¹⁰⁰.
+//! 3. **Polynomials** on |r| ≤ π/4 (fitted to 1.0001·π/4, since the rounded n can leave r a
+//!    hair outside): sin r = r + r z P(z), cos r = 1 − z/2 + z² Q(z), z = r², P and Q of
+//!    six coefficients each (degrees 13 and 14 in r), weighted-minimax for the relative
+//!    error and rounded to f64 one coefficient at a time, refitting the rest
+//!    (`tools/fit_sin_cos.py`, Remez exchange in 60-digit mpmath): relative error
+//!    3.7·10⁻¹⁸ (2⁻⁵⁷·⁹) for sin and 5.7·10⁻²⁰ (2⁻⁶³·⁹) for cos. The tail rl enters to first
+//!    order, sin(r + rl) ≈ sin r + rl (1 − z/2), cos(r + rl) ≈ cos r − r·rl, and 1 − z/2 is
+//!    computed with its rounding error carried, so the last rounding of each result is the
+//!    only large one. The two polynomials are evaluated side by side with Estrin's scheme.
+//!    (Written lane by lane, [sin, cos], but LLVM does not pair the lanes into SSE2 on its
+//!    own; it does vectorize across angles, in [`sin_cos_array`].)
+//! 4. **Quadrant selection by bits.** (sin x, cos x) = (s, c), (c, −s), (−s, −c), (−c, s)
+//!    for n mod 4 = 0, 1, 2, 3: an xor-swap under an all-ones-or-zero mask and two sign-bit
+//!    xors, on `to_bits`.
+//!
+//! # Accuracy (measured by the tests below, against std, i.e. glibc)
+//!
+//! - |x| ≤ 2²⁰·π/2 ≈ 1.6·10⁶ (exact n·PIO2_1, n·PIO2_2): at most 1 ulp from std in the
+//!   tests' 14 million points (up to 6 % of them 1 ulp away in sin or cos, none further),
+//!   including the seven doubles around the one nearest to k·π/2 for every |k| ≤ 2¹⁶ and
+//!   every 61st k up to 2²⁰, and tiny arguments (sin x = x and cos x = 1 exactly for
+//!   |x| ≤ 2⁻²⁷). Near k·π/2 the reduction adds a relative error of at most
+//!   |n|·2⁻¹²⁰/|r| to the small result: under a tenth of an ulp while |r| ≥ |n|·2⁻⁶³.
+//!   Only some doubles near k·π/2 with large k come closer, and there the tests measured
+//!   at most 1 ulp.
+//! - 1.6·10⁶ < |x| < 2⁵⁰ ≈ 1.1·10¹⁵: n·PIO2_1 is rounded, and the absolute error grows
+//!   like |x|·2⁻⁵², i.e. like the spacing of the doubles around x (the angle itself is not
+//!   known better than that); measured: at most half that spacing, and |sin|, |cos| ≤ 1 + 10⁻¹⁵.
+//! - |x| ≥ 2⁵⁰, ±∞ and NaN: NaN (a mask on the exponent, no branch). Never a panic.
+//! - Signed zero: `sin_cos(-0.0)` is `(+0.0, 1.0)` (std gives −0.0); every other input
+//!   keeps the sign std gives.
+
+/// 2/π, rounded.
+const FRAC_2_PI: f64 = core::f64::consts::FRAC_2_PI;
+/// 1.5·2⁵²: adding it rounds a number of magnitude < 2⁵¹ to an integer.
+const ROUND: f64 = 6_755_399_441_055_744.0;
+/// π/2 = PIO2_1 + PIO2_2 + PIO2_3 + 1.0·10⁻³⁷: 6746518852·2⁻³², 2242054355·2⁻⁶⁵ (33 bits
+/// each), and the rest rounded to 53 bits (`tools/fit_sin_cos.py`).
+const PIO2_1: f64 = 1.570_796_326_734_125_6;
+const PIO2_2: f64 = 6.077_100_506_303_966e-11;
+const PIO2_3: f64 = 2.022_266_248_795_950_6e-21;
+/// Bits of |x| from which the result is NaN: 2⁵⁰ (x·2/π would reach 2⁵¹ near 3.5·10¹⁵;
+/// the spacing of the doubles there is 0.25 already).
+const HUGE_BITS: u64 = 0x4310_0000_0000_0000;
+
+/// P(z) of sin r = r + r z P(z), constant term first (`tools/fit_sin_cos.py`).
+const S: [f64; 6] = [
+    -0.166_666_666_666_666_3,
+    0.008_333_333_333_321_84,
+    -0.000_198_412_698_293_585_28,
+    2.755_731_353_851_428e-6,
+    -2.505_073_438_928_488_6e-8,
+    1.589_543_329_293_865e-10,
+];
+/// Q(z) of cos r = 1 − z/2 + z² Q(z), constant term first (`tools/fit_sin_cos.py`).
+const C: [f64; 6] = [
+    0.041_666_666_666_666_595,
+    -0.001_388_888_888_887_333_8,
+    2.480_158_728_899_748e-5,
+    -2.755_731_421_529_913_4e-7,
+    2.087_570_511_500_054e-9,
+    -1.135_873_277_663_583_8e-11,
+];
+
+/// One Horner step on both lanes: [p₀ z + c₀, p₁ z + c₁], fused or not.
+#[inline(always)]
+fn step<const FUSED: bool>(p: [f64; 2], z: f64, c0: f64, c1: f64) -> [f64; 2] {
+    if FUSED {
+        [p[0].mul_add(z, c0), p[1].mul_add(z, c1)]
+    } else {
+        [p[0] * z + c0, p[1] * z + c1]
+    }
+}
+
+/// Sine and cosine of `x` (radians), within 1 ulp of the correctly rounded values for
+/// |x| ≤ 1.6·10⁶; see the module documentation for the method and larger |x|.
+#[inline(always)]
+pub fn sin_cos(x: f64) -> (f64, f64) {
+    sin_cos_impl::<false>(x)
+}
+
+/// [`sin_cos`] of N angles at once. Written as a loop over independent lanes, which LLVM's
+/// loop vectorizer turns into two-wide SSE2 code (two angles per instruction); the
+/// straight-line calls of the generated code are not vectorized.
+#[inline(always)]
+pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
+    let mut sin = [0.0; N];
+    let mut cos = [0.0; N];
+    for i in 0..N {
+        (sin[i], cos[i]) = sin_cos(x[i]);
+    }
+    (sin, cos)
+}
+
+/// [`sin_cos`] with its Horner steps as `mul_add`, for the benchmark
+/// (`cargo bench -p dynamics-runtime --bench sin_cos`): without `-C target-cpu` supporting
+/// FMA, as the workspace builds, each `mul_add` is a call to the C library's `fma`.
+#[inline(always)]
+pub fn sin_cos_mul_add(x: f64) -> (f64, f64) {
+    sin_cos_impl::<true>(x)
+}
+
+#[inline(always)]
+fn sin_cos_impl<const FUSED: bool>(x: f64) -> (f64, f64) {
+    // 1. n = nearest integer to x·2/π; its last two bits are those of `shifted`.
+    let shifted = x * FRAC_2_PI + ROUND;
+    let n = shifted - ROUND;
+    let quadrant = shifted.to_bits();
+
+    // 2. r + rl = x − n·π/2 (see the module documentation for why each step is exact).
+    let a = x - n * PIO2_1;
+    let p2 = n * PIO2_2;
+    let p3 = n * PIO2_3;
+    let tail = p2 + p3;
+    let tail_low = (p2 - tail) + p3;
+    let r = a - tail;
+    let rl = ((a - r) - tail) - tail_low;
+
+    // 3. The polynomials, both lanes at once.
+    let z = r * r;
+    let half_z = 0.5 * z;
+    let z2 = z * z;
+    // Estrin's scheme, (c0 + c1 z) + z² (c2 + c3 z) + z⁴ (c4 + c5 z): one multiplication
+    // more than Horner's and a third of its latency (measured: 16 % faster in a dependent
+    // chain, 5 % in a stream of independent angles).
+    let lo = step::<FUSED>([S[1], C[1]], z, S[0], C[0]);
+    let mid = step::<FUSED>([S[3], C[3]], z, S[2], C[2]);
+    let hi = step::<FUSED>([S[5], C[5]], z, S[4], C[4]);
+    let z4 = z2 * z2;
+    let p = [
+        lo[0] + (z2 * mid[0] + z4 * hi[0]),
+        lo[1] + (z2 * mid[1] + z4 * hi[1]),
+    ];
+    let scaled = [(r * z) * p[0], z2 * p[1]];
+    let sin = r + (scaled[0] + (rl - rl * half_z));
+    let w = 1.0 - half_z;
+    let cos = w + (((1.0 - w) - half_z) + (scaled[1] - r * rl));
+
+    // 4. Quadrant: swap when n is odd, negate sin when n mod 4 ∈ {2, 3}, cos when ∈ {1, 2}.
+    let swap = (quadrant & 1).wrapping_neg();
+    let sin_sign = (quadrant & 2) << 62;
+    let cos_sign = (quadrant.wrapping_add(1) & 2) << 62;
+    // All ones when |x| ≥ 2⁵⁰ (or NaN): or-ing them in makes a NaN.
+    let huge = (HUGE_BITS
+        .wrapping_sub(1)
+        .wrapping_sub(x.to_bits() & !(1 << 63)) as i64
+        >> 63) as u64;
+    let (sb, cb) = (sin.to_bits(), cos.to_bits());
+    let d = (sb ^ cb) & swap;
+    (
+        f64::from_bits((sb ^ d ^ sin_sign) | huge),
+        f64::from_bits((cb ^ d ^ cos_sign) | huge),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::sin_cos;
+    use std::f64::consts::PI;
+
+    /// Distance in units in the last place: how many doubles lie between `a` and `b`
+    /// (+0 and −0 count as one point).
+    fn ulps(a: f64, b: f64) -> u64 {
+        fn ordered(x: f64) -> i128 {
+            let bits = x.to_bits();
+            if bits >> 63 == 1 {
+                -i128::from(bits & !(1 << 63))
+            } else {
+                i128::from(bits)
+            }
+        }
+        (ordered(a) - ordered(b)).unsigned_abs() as u64
+    }
+
+    /// Worst distance from std over `points`, with the argument where it happens, the
+    /// number of points and how many of them differ from std at all.
+    fn worst(points: impl Iterator<Item = f64>) -> (u64, f64, usize, usize) {
+        let (mut max, mut at, mut count, mut differ) = (0, 0.0, 0, 0);
+        for x in points {
+            let (s, c) = sin_cos(x);
+            let (s_std, c_std) = x.sin_cos();
+            let e = ulps(s, s_std).max(ulps(c, c_std));
+            if e > max {
+                (max, at) = (e, x);
+            }
+            count += 1;
+            differ += usize::from(e > 0);
+        }
+        (max, at, count, differ)
+    }
+
+    /// A reproducible stream of uniform numbers in [0, 1) (xorshift64*).
+    fn uniform(mut state: u64) -> impl Iterator<Item = f64> {
+        std::iter::from_fn(move || {
+            state ^= state >> 12;
+            state ^= state << 25;
+            state ^= state >> 27;
+            Some((state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64)
+        })
+    }
+
+    /// The stated bound: within 1 ulp of std (glibc, itself within an ulp of the exact value
+    /// and almost always correctly rounded) for |x| ≤ 2²⁰·π/2. Measured on 14 million
+    /// points: uniform on a joint's range and on ±10⁵, log-uniform magnitudes from 10⁻³⁰⁰ to
+    /// 1.6·10⁶, a dense grid on [−10, 10], and the seven doubles around the double nearest
+    /// to k·π/2 for every 0 < |k| ≤ 2¹⁶ and every 61st k up to 2²⁰ (where the reduction
+    /// cancels most). The worst case
+    /// measured is 1 ulp (`cargo test -p dynamics-runtime sin_cos -- --nocapture` prints
+    /// each sweep's).
+    #[test]
+    fn f64_sin_cos_within_one_ulp_of_std() {
+        let sweeps: [(&str, Box<dyn Iterator<Item = f64>>); 6] = [
+            (
+                "uniform, |x| <= 2 pi",
+                Box::new(
+                    uniform(1)
+                        .take(4_000_000)
+                        .map(|u| (2.0 * u - 1.0) * 2.0 * PI),
+                ),
+            ),
+            (
+                "uniform, |x| <= 1e5",
+                Box::new(uniform(2).take(3_000_000).map(|u| (2.0 * u - 1.0) * 1e5)),
+            ),
+            (
+                "log-uniform, 1e-300 <= |x| <= 1.6e6",
+                Box::new(uniform(3).take(2_000_000).enumerate().map(|(i, u)| {
+                    let x = 10f64.powf(-300.0 + u * 306.2);
+                    if i % 2 == 0 {
+                        x
+                    } else {
+                        -x
+                    }
+                })),
+            ),
+            (
+                "grid on [-10, 10]",
+                Box::new((0..4_000_000).map(|i| -10.0 + f64::from(i) * 5.000_000_1e-6)),
+            ),
+            (
+                "around k pi/2, |k| <= 2^16",
+                Box::new(near_multiples_of_half_pi(1..=1 << 16)),
+            ),
+            (
+                "around k pi/2, every 61st k up to 2^20",
+                Box::new(near_multiples_of_half_pi((1 << 16..=1 << 20).step_by(61))),
+            ),
+        ];
+        for (name, points) in sweeps {
+            let (max, at, count, differ) = worst(points);
+            println!(
+                "sin_cos, {name}: {count} points, {:.2} % differ from std, worst {max} ulp (at x = {at:e})",
+                100.0 * differ as f64 / count as f64
+            );
+            assert!(max <= 1, "{name}: {max} ulp from std at x = {at:e}");
+        }
+    }
+
+    /// For each k of `ks` (positive), and −k: the double nearest to k·π/2 (from a 122-bit π/2) and the three
+    /// doubles on either side.
+    fn near_multiples_of_half_pi(ks: impl Iterator<Item = i32>) -> impl Iterator<Item = f64> {
+        ks.flat_map(|k| [k, -k]).flat_map(|k| {
+            let k = f64::from(k);
+            // k·PIO2_1 and k·PIO2_2 are exact; their sum rounds once, and the tail is below
+            // a tenth of an ulp of it for k ≠ 0.
+            let head = k * 1.570_796_326_734_125_6;
+            let tail = k * 6.077_100_506_303_966e-11 + k * 2.022_266_248_795_950_6e-21;
+            let nearest = head + tail;
+            (-3i64..=3).map(move |m| f64::from_bits((nearest.to_bits() as i64 + m) as u64))
+        })
+    }
+
+    #[test]
+    fn array_is_elementwise() {
+        let x = [-3.0, -1.0, 0.1, PI / 4.0, 2.0, 1e5, f64::NAN];
+        let (s, c) = super::sin_cos_array(&x);
+        for i in 0..x.len() {
+            let (s1, c1) = sin_cos(x[i]);
+            assert_eq!(
+                (s[i].to_bits(), c[i].to_bits()),
+                (s1.to_bits(), c1.to_bits())
+            );
+        }
+    }
+
+    #[test]
+    fn f64_sin_cos_tiny_and_exact_cases() {
+        for x in [0.0, 5e-324, 1e-300, 1e-20, 1e-9, 2.0_f64.powi(-27), -1e-12] {
+            let (s, c) = sin_cos(x);
+            assert_eq!(s, x, "sin {x:e}");
+            assert_eq!(c, 1.0, "cos {x:e}");
+        }
+        assert_eq!(sin_cos(-0.0_f64), (0.0, 1.0));
+        let (s, c) = sin_cos(PI);
+        assert_eq!((s, c), PI.sin_cos());
+    }
+
+    /// Beyond the exact-reduction range the absolute error grows like the spacing of the
+    /// doubles around x; beyond 2⁵⁰, and for infinities and NaN, the result is NaN.
+    #[test]
+    fn f64_sin_cos_large_and_non_finite_arguments() {
+        let mut worst = 0.0_f64;
+        for u in uniform(4).take(200_000) {
+            let x = 10f64.powf(6.2 + u * 8.8); // 1.6e6 .. 1e15
+            let (s, c) = sin_cos(x);
+            let (s_std, c_std) = x.sin_cos();
+            let spacing = f64::from_bits(x.to_bits() + 1) - x;
+            worst = worst
+                .max((s - s_std).abs() / spacing)
+                .max((c - c_std).abs() / spacing);
+            assert!(
+                s.abs() <= 1.0 + 1e-15 && c.abs() <= 1.0 + 1e-15,
+                "x = {x:e}"
+            );
+        }
+        println!("sin_cos, 1.6e6 < |x| < 1e15: worst absolute error {worst:.3} x spacing of doubles at x");
+        assert!(worst <= 1.0, "{worst}");
+        for x in [
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            2.0_f64.powi(50),
+            -1e16,
+            1e300,
+            f64::MAX,
+        ] {
+            let (s, c) = sin_cos(x);
+            assert!(s.is_nan() && c.is_nan(), "sin_cos({x:e}) = ({s}, {c})");
+        }
+        let below = f64::from_bits(2.0_f64.powi(50).to_bits() - 1);
+        assert!(!sin_cos(below).0.is_nan());
+    }
+}
