@@ -13,7 +13,9 @@
 //! measured call is one call on one state, the states taken in turn: the 20 `samples` of
 //! `tests/data/pinocchio/<model>.json` for the five anchor models and their URDF twins, the
 //! 20 of `benches/pinocchio/quadruped.json` (written by the `export_model` example) for the
-//! quadruped, 20 seeded random states for the others. The Pinocchio comparison
+//! quadruped, 20 seeded random states for the others. The planar chains of `models::chains`
+//! (1 to 30 links) are timed for their three outputs (inverse dynamics, mass matrix, forward
+//! dynamics): `cargo bench -p models --bench dynamics -- '^Chain'`. The Pinocchio comparison
 //! (`benches/pinocchio/compare.sh`) reads the medians of the same benchmarks.
 //!
 //! The quadruped's foot loads are zero in the generated calls and absent (`None`) in the
@@ -25,6 +27,7 @@ use criterion::{criterion_group, criterion_main, Criterion, SamplingMode};
 use dynamics_runtime::reference::Wrench;
 use dynamics_runtime::{JointKind, Mechanism, Model, Reference};
 use models::anchors::{DoublePendulum, Panda, Pendulum, Planar3, Ur5};
+use models::chains::{Chain1, Chain10, Chain15, Chain2, Chain20, Chain25, Chain3, Chain30, Chain5};
 use models::puma560::Puma560;
 use models::quadruped::Quadruped;
 use models::seed::{EccentricRotor, FallingRod, GyroscopicBody};
@@ -473,6 +476,34 @@ bench_model!(
         potential_energy,
     ]
 );
+
+/// The planar chains (`models::chains`): their three outputs, 20 seeded random states each.
+macro_rules! bench_chains {
+    ($($fn_name:ident: $m:ty, $seed:literal;)*) => {
+        $(
+            bench_model!(
+                $fn_name,
+                $m,
+                Source::Random($seed),
+                [],
+                [inverse_dynamics, mass_matrix, forward_dynamics]
+            );
+        )*
+    };
+}
+
+bench_chains! {
+    chain1: Chain1, 1001;
+    chain2: Chain2, 1002;
+    chain3: Chain3, 1003;
+    chain5: Chain5, 1005;
+    chain10: Chain10, 1010;
+    chain15: Chain15, 1015;
+    chain20: Chain20, 1020;
+    chain25: Chain25, 1025;
+    chain30: Chain30, 1030;
+}
+
 bench_model!(pendulum_urdf, PendulumUrdf, PENDULUM, [], all, checked);
 bench_model!(
     double_pendulum_urdf,
@@ -517,6 +548,11 @@ mod groups {
         targets = falling_rod, eccentric_rotor, gyroscopic_body
     }
     criterion_group! {
+        name = chains;
+        config = config();
+        targets = chain1, chain2, chain3, chain5, chain10, chain15, chain20, chain25, chain30
+    }
+    criterion_group! {
         name = urdf_twins;
         config = config();
         targets = pendulum_urdf, double_pendulum_urdf, planar3_urdf, ur5_urdf, panda_urdf
@@ -527,5 +563,6 @@ criterion_main!(
     groups::anchors,
     groups::robots,
     groups::seed,
+    groups::chains,
     groups::urdf_twins
 );

@@ -2,6 +2,7 @@
 //! models (pendulums, a planar chain, UR5, Panda).
 
 pub mod anchors;
+pub mod chains;
 pub mod linkages;
 pub mod puma560;
 pub mod quadruped;
