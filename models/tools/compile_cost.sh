@@ -41,7 +41,7 @@ while [ $# -gt 0 ]; do
         --chains) CHAINS="$2"; shift 2 ;;
         --repeat) REPEAT="$2"; shift 2 ;;
         --keep) KEEP=1; shift ;;
-        -h|--help) sed -n '2,30p' "${BASH_SOURCE[0]}"; exit 0 ;;
+        -h|--help) sed -n '2,/^set /{/^set /d;p}' "${BASH_SOURCE[0]}"; exit 0 ;;
         *) echo "unknown argument: $1" >&2; exit 2 ;;
     esac
 done
