@@ -58,6 +58,14 @@ impl Signature<'_> {
             .then_some(Arg { array, len })
     }
 
+    /// `arrays` with the load input appended when the mechanism declares loads.
+    fn with_loads(&self, mut arrays: Vec<Array>) -> Vec<Array> {
+        if self.model.load_inputs > 0 {
+            arrays.push(Array::Loads);
+        }
+        arrays
+    }
+
     /// The arguments, in the fixed order q, v, a, tau, p, loads.
     fn args(&self, arrays: &[Array]) -> Vec<Arg> {
         let order = [
@@ -90,6 +98,24 @@ impl Signature<'_> {
     }
 }
 
+/// A new graph with the joint transforms and body inertias every expansion starts from.
+fn fresh_graph(
+    model: &Model,
+) -> (
+    Graph,
+    Vec<geometry::JointTransform>,
+    Vec<geometry::BodyInertia>,
+) {
+    let g = Graph::new();
+    let transforms = geometry::joint_transforms(&g, model);
+    let inertias = model
+        .bodies
+        .iter()
+        .map(|b| geometry::body_inertia(&g, b))
+        .collect();
+    (g, transforms, inertias)
+}
+
 fn inputs(g: &Graph, array: Array, n: usize) -> Vec<Node> {
     (0..n).map(|k| g.input(array, k)).collect()
 }
@@ -110,13 +136,7 @@ pub fn forward_dynamics_by(
     loads: bool,
     method: ForwardMethod,
 ) -> (Graph, Vec<Node>) {
-    let g = Graph::new();
-    let t = geometry::joint_transforms(&g, model);
-    let i: Vec<_> = model
-        .bodies
-        .iter()
-        .map(|b| geometry::body_inertia(&g, b))
-        .collect();
+    let (g, t, i) = fresh_graph(model);
     let nv = model.nv;
     let v = inputs(&g, Array::V, nv);
     let tau = inputs(&g, Array::Tau, nv);
@@ -169,23 +189,9 @@ pub fn expand(model: &Model, scalar_trait: syn::Path) -> Vec<Function> {
     let outputs = model.outputs;
     let nv = model.nv;
     let loads = model.load_inputs > 0;
-    let with_loads = |mut arrays: Vec<Array>| {
-        if loads {
-            arrays.push(Array::Loads);
-        }
-        arrays
-    };
+    let with_loads = |arrays: Vec<Array>| sig.with_loads(arrays);
     let mut functions = Vec::new();
-    let setup = || {
-        let g = Graph::new();
-        let transforms = geometry::joint_transforms(&g, model);
-        let inertias: Vec<_> = model
-            .bodies
-            .iter()
-            .map(|b| geometry::body_inertia(&g, b))
-            .collect();
-        (g, transforms, inertias)
-    };
+    let setup = || fresh_graph(model);
     if outputs.inverse_dynamics && nv > 0 {
         let (g, t, i) = setup();
         let (v, a) = (inputs(&g, Array::V, nv), inputs(&g, Array::A, nv));
@@ -329,22 +335,8 @@ fn constrained_functions(
     let outputs = model.outputs;
     let loads = model.load_inputs > 0;
     let nv = model.nv;
-    let setup = || {
-        let g = Graph::new();
-        let transforms = geometry::joint_transforms(&g, model);
-        let inertias: Vec<_> = model
-            .bodies
-            .iter()
-            .map(|b| geometry::body_inertia(&g, b))
-            .collect();
-        (g, transforms, inertias)
-    };
-    let with_loads = |mut arrays: Vec<Array>| {
-        if loads {
-            arrays.push(Array::Loads);
-        }
-        arrays
-    };
+    let setup = || fresh_graph(model);
+    let with_loads = |arrays: Vec<Array>| sig.with_loads(arrays);
     if outputs.force_analysis {
         let (g, t, i) = setup();
         let (v, a) = (inputs(&g, Array::V, nv), inputs(&g, Array::A, nv));

@@ -158,17 +158,7 @@ pub fn sweep(
     inertias: &[BodyInertia],
     inputs: &SweepInputs,
 ) -> Sweep {
-    let base_accel = if inputs.gravity {
-        Vec3::constant(g, model.gravity_in_world).neg(g)
-    } else {
-        Vec3::zero(g)
-    };
-    let base = BodyMotion::new(g, Vec3::zero(g), Vec3::zero(g), base_accel);
-    let mut motions: Vec<BodyMotion> = Vec::with_capacity(model.bodies.len());
-    for (i, body) in model.bodies.iter().enumerate() {
-        let parent = body.parent.map_or(base, |p| motions[p]);
-        motions.push(forward(g, &body.joint, &transforms[i], parent, inputs));
-    }
+    let motions = motions(g, model, transforms, inputs);
     let loads = load_wrenches(g, model, inputs.loads);
     // The wrench each body needs for its own motion, less the loads on it.
     let own = |i: usize, inertia: &BodyInertia| {
@@ -401,8 +391,30 @@ pub fn joint_dofs(kind: &JointKind) -> usize {
     }
 }
 
+/// The forward sweep: every body's ω, α and a_P, parents first, with gravity acting as an
+/// upward acceleration −g of the base when `inputs.gravity` is set.
+pub fn motions(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    inputs: &SweepInputs,
+) -> Vec<BodyMotion> {
+    let base_accel = if inputs.gravity {
+        Vec3::constant(g, model.gravity_in_world).neg(g)
+    } else {
+        Vec3::zero(g)
+    };
+    let base = BodyMotion::new(g, Vec3::zero(g), Vec3::zero(g), base_accel);
+    let mut motions: Vec<BodyMotion> = Vec::with_capacity(model.bodies.len());
+    for (i, body) in model.bodies.iter().enumerate() {
+        let parent = body.parent.map_or(base, |p| motions[p]);
+        motions.push(forward(g, &body.joint, &transforms[i], parent, inputs));
+    }
+    motions
+}
+
 /// One step of the forward sweep: the body's motion from its parent's.
-pub(crate) fn forward(
+fn forward(
     g: &Graph,
     joint: &crate::model::Joint,
     t: &JointTransform,

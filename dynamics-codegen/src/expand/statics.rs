@@ -22,7 +22,7 @@
 //! Φ_q q̈ = γ keeps φ̈ = 0) are exact symbolic derivatives of φ.
 
 use super::geometry::{BodyInertia, JointTransform};
-use super::rnea::{self, BodyMotion, SweepInputs};
+use super::rnea::{self, SweepInputs};
 use crate::model::statics::{Component, Statics};
 use crate::model::Model;
 use crate::sym::{Array, Graph, Mat3, Node, Vec3};
@@ -75,23 +75,7 @@ pub fn balance_equations(
     inputs: &SweepInputs,
 ) -> (Vec<Vec<Node>>, Vec<Node>) {
     // The wrench each body needs for its motion (the right-hand side).
-    let base_accel = if inputs.gravity {
-        Vec3::constant(g, model.gravity_in_world).neg(g)
-    } else {
-        Vec3::zero(g)
-    };
-    let base = BodyMotion::new(g, Vec3::zero(g), Vec3::zero(g), base_accel);
-    let mut motions: Vec<BodyMotion> = Vec::with_capacity(model.bodies.len());
-    for (i, body) in model.bodies.iter().enumerate() {
-        let parent = body.parent.map_or(base, |p| motions[p]);
-        motions.push(rnea::forward(
-            g,
-            &body.joint,
-            &transforms[i],
-            parent,
-            inputs,
-        ));
-    }
+    let motions = rnea::motions(g, model, transforms, inputs);
     let loads = rnea::load_wrenches(g, model, inputs.loads);
     let rows = statics.rows_per_body();
     let component = |(f, m): &(Vec3, Vec3), (kind, axis): (Component, usize)| match kind {
