@@ -20,7 +20,7 @@
 //! These are run-time loops over small fixed arrays with pivoting, for `T: Scalar +
 //! PartialOrd` (f32, f64, double-double), not straight-line code.
 
-use crate::scalar::Scalar;
+use crate::scalar::{abs, Scalar};
 use std::fmt;
 
 /// Why a closure or a constrained solve failed.
@@ -79,14 +79,6 @@ impl fmt::Display for ClosureError {
 }
 
 impl std::error::Error for ClosureError {}
-
-fn abs<T: Scalar + PartialOrd>(x: T) -> T {
-    if x < T::zero() {
-        -x
-    } else {
-        x
-    }
-}
 
 /// Solves the square system a x = b (by rows, the first `n` rows and columns) in place by
 /// Gaussian elimination with partial pivoting; `Singular` if a pivot is below 1e-13 of the

@@ -25,7 +25,7 @@
 
 use crate::double_double::DoubleDouble;
 use crate::dynamics::{Dynamics, Lagrangian};
-use crate::scalar::Scalar;
+use crate::scalar::{abs, Scalar};
 use std::fmt;
 
 /// A mechanism's state: configuration and velocity.
@@ -264,14 +264,6 @@ impl Real for f64 {
 impl Real for DoubleDouble {
     fn to_f64(self) -> f64 {
         DoubleDouble::to_f64(self)
-    }
-}
-
-fn abs<T: Real>(x: T) -> T {
-    if x < T::zero() {
-        -x
-    } else {
-        x
     }
 }
 

@@ -56,6 +56,16 @@ pub trait Scalar:
     }
 }
 
+/// |x| for an ordered scalar (the run-time solvers' pivoting and convergence tests; the
+/// generated code never needs it). NaN stays NaN.
+pub(crate) fn abs<T: Scalar + PartialOrd>(x: T) -> T {
+    if x < T::zero() {
+        -x
+    } else {
+        x
+    }
+}
+
 macro_rules! impl_float_scalar {
     ($t:ty $(, { $($extra:item)* })?) => {
         impl Scalar for $t {

@@ -7,7 +7,7 @@
 //! near one. [`ForceAnalysis::checked`] turns a ratio below a threshold (or a non-finite
 //! value) into an error instead of silently returning huge or NaN forces.
 
-use crate::scalar::Scalar;
+use crate::scalar::{abs, Scalar};
 use std::fmt;
 
 /// The unknowns of a force analysis and the pivots of its QR factorization.
@@ -47,14 +47,6 @@ impl<T: fmt::Display> fmt::Display for IllConditioned<T> {
 }
 
 impl<T: fmt::Debug + fmt::Display> std::error::Error for IllConditioned<T> {}
-
-fn abs<T: Scalar + PartialOrd>(x: T) -> T {
-    if x < T::zero() {
-        -x
-    } else {
-        x
-    }
-}
 
 impl<T: Scalar + PartialOrd, const N: usize> ForceAnalysis<T, N> {
     /// min |R_jj| / max |R_jj| ≥ 1/κ₂(A); NaN if any pivot or unknown is not finite.
