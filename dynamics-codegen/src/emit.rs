@@ -25,6 +25,13 @@
 //! - Inputs are `q[3]`: constant indices into fixed-size arrays, checked at compile time.
 //! - When both `sin x` and `cos x` are live they are computed together by one
 //!   `let (vS, vC) = T::sin_cos(vX);` at the position of the first of them.
+//! - When sines or cosines of two or more inputs are live (the joint angles, in every
+//!   function of a model with revolute joints), they are computed by one call,
+//!   `let ([vS0, _, vS2], [vC0, vC1, vC2]) = T::sin_cos_array([q[0], q[1], q[2]]);`, at the
+//!   position of the first of them, the inputs read in place (so no input is needed earlier
+//!   than its turn) and `_` for a value no one reads. For `f64` the runtime evaluates the
+//!   angles in pairs with SIMD; a scalar type without such a routine gets one `sin_cos`
+//!   each.
 //! - An argument the function does not read is named with a leading underscore.
 //! - No allocation, no branch, no panic.
 //!
@@ -280,28 +287,48 @@ fn var(node: Node) -> Ident {
     format_ident!("{}", node.to_string())
 }
 
-/// One statement computing a non-leaf node (or a `sin`/`cos` pair).
-#[derive(Clone, Copy, Debug)]
+/// One statement computing a non-leaf node, a `sin`/`cos` pair, or the sines and cosines
+/// of several inputs at once.
+#[derive(Clone, Debug)]
 enum Step {
     One(Node),
-    SinCos { sin: Node, cos: Node, arg: Node },
+    SinCos {
+        sin: Node,
+        cos: Node,
+        arg: Node,
+    },
+    /// `T::sin_cos_array` of inputs, with the (optional) sine and cosine node of each.
+    Batch(Vec<BatchedAngle>),
+}
+
+/// One angle of a [`Step::Batch`]: an input leaf and whichever of its sine and cosine is live.
+#[derive(Clone, Copy, Debug)]
+struct BatchedAngle {
+    arg: Node,
+    sin: Option<Node>,
+    cos: Option<Node>,
 }
 
 impl Step {
     /// The position of the statement: its (first) node.
-    fn first(self) -> Node {
+    fn first(&self) -> Node {
         match self {
-            Step::One(n) => n,
-            Step::SinCos { sin, cos, .. } => sin.min(cos),
+            Step::One(n) => *n,
+            Step::SinCos { sin, cos, .. } => (*sin).min(*cos),
+            // A batch holds a live sine or cosine of each angle, whose ids exceed the angle's.
+            Step::Batch(angles) => self.defines().into_iter().min().unwrap_or(angles[0].arg),
         }
     }
 
-    fn defines(self) -> impl Iterator<Item = Node> {
-        let (a, b) = match self {
-            Step::One(n) => (n, None),
-            Step::SinCos { sin, cos, .. } => (sin, Some(cos)),
-        };
-        std::iter::once(a).chain(b)
+    fn defines(&self) -> Vec<Node> {
+        match self {
+            Step::One(n) => vec![*n],
+            Step::SinCos { sin, cos, .. } => vec![*sin, *cos],
+            Step::Batch(angles) => angles
+                .iter()
+                .flat_map(|a| a.sin.into_iter().chain(a.cos))
+                .collect(),
+        }
     }
 }
 
@@ -311,6 +338,8 @@ impl Step {
 struct Piece {
     steps: Vec<Step>,
     leaves: BTreeSet<Node>,
+    /// Arrays read in place by a [`Step::Batch`].
+    batch_arrays: BTreeSet<Array>,
     arrays: BTreeSet<Array>,
     carry_in: Vec<Node>,
 }
@@ -341,11 +370,21 @@ impl Plan {
         let mut defined_in = HashMap::new();
         let mut last_use: HashMap<Node, usize> = HashMap::new();
         for (p, piece) in pieces.iter_mut().enumerate() {
-            for &step in &piece.steps {
-                defined_in.extend(step.defines().map(|n| (n, p)));
+            for step in &piece.steps {
+                defined_in.extend(step.defines().into_iter().map(|n| (n, p)));
                 let operands: Vec<Node> = match step {
                     Step::One(n) => ops[n.index()].children().collect(),
-                    Step::SinCos { arg, .. } => vec![arg],
+                    Step::SinCos { arg, .. } => vec![*arg],
+                    Step::Batch(angles) => {
+                        // Read in place, not through a `let` of the leaf: only the array.
+                        piece.batch_arrays.extend(angles.iter().filter_map(|a| {
+                            match ops[a.arg.index()] {
+                                Op::Input(r) => Some(r.array),
+                                _ => None,
+                            }
+                        }));
+                        Vec::new()
+                    }
                 };
                 for child in operands {
                     if ops[child.index()].is_leaf() {
@@ -373,6 +412,7 @@ impl Plan {
                     Op::Input(r) => Some(r.array),
                     _ => None,
                 })
+                .chain(piece.batch_arrays.iter().copied())
                 .collect();
             let mut carry: Vec<Node> = last_use
                 .iter()
@@ -399,7 +439,7 @@ impl Plan {
             .iter()
             .map(|&n| (n, let_node(n, ops[n.index()])))
             .collect();
-        items.extend(piece.steps.iter().map(|&s| (s.first(), let_step(s, ops))));
+        items.extend(piece.steps.iter().map(|s| (s.first(), let_step(s, ops))));
         items.sort_by_key(|(n, _)| *n);
         stmts.extend(items.into_iter().map(|(_, stmt)| stmt));
 
@@ -468,8 +508,9 @@ impl Plan {
     }
 }
 
-/// The live non-leaf nodes as statements, in order, with `sin x`/`cos x` pairs merged into
-/// one `sin_cos` step at the first of the two.
+/// The live non-leaf nodes as statements, in order: the sines and cosines of two or more
+/// inputs merged into one [`Step::Batch`] at the first of them, other `sin x`/`cos x` pairs
+/// into one `sin_cos` step at the first of the two.
 fn schedule(ops: &[Op], live: &LiveSet) -> Vec<Step> {
     let mut sin_of = HashMap::new();
     let mut cos_of = HashMap::new();
@@ -484,9 +525,41 @@ fn schedule(ops: &[Op], live: &LiveSet) -> Vec<Step> {
             _ => {}
         }
     }
+    let is_input = |x: &Node| matches!(ops[x.index()], Op::Input(_));
+    let batched: BTreeSet<Node> = sin_of
+        .keys()
+        .chain(cos_of.keys())
+        .copied()
+        .filter(is_input)
+        .collect();
+    let batch = (batched.len() >= 2).then(|| {
+        batched
+            .iter()
+            .map(|&arg| BatchedAngle {
+                arg,
+                sin: sin_of.get(&arg).copied(),
+                cos: cos_of.get(&arg).copied(),
+            })
+            .collect::<Vec<_>>()
+    });
+    let batch_start = batch.as_ref().and_then(|angles| {
+        angles
+            .iter()
+            .flat_map(|a| a.sin.into_iter().chain(a.cos))
+            .min()
+    });
+
     let mut steps = Vec::new();
     for node in live.nodes() {
         let op = ops[node.index()];
+        if let (Op::Sin(x) | Op::Cos(x), Some(angles)) = (op, &batch) {
+            if batched.contains(&x) {
+                if Some(node) == batch_start {
+                    steps.push(Step::Batch(angles.clone()));
+                }
+                continue; // computed by the batch
+            }
+        }
         let pair = match op {
             Op::Sin(x) | Op::Cos(x) => sin_of.get(&x).zip(cos_of.get(&x)).map(|(&s, &c)| (x, s, c)),
             _ => None,
@@ -511,11 +584,7 @@ fn let_node(node: Node, op: Op) -> TokenStream {
             let lit = f64_literal(c.value());
             quote!(T::from_f64(#lit))
         }
-        Op::Input(r) => {
-            let array = format_ident!("{}", r.array.name());
-            let index = Literal::u32_unsuffixed(r.index);
-            quote!(#array[#index])
-        }
+        Op::Input(_) => input_expr(op),
         Op::Add(a, b) => bin(a, quote!(+), b),
         Op::Sub(a, b) => bin(a, quote!(-), b),
         Op::Mul(a, b) => bin(a, quote!(*), b),
@@ -532,13 +601,40 @@ fn let_node(node: Node, op: Op) -> TokenStream {
 }
 
 /// The statement of a step.
-fn let_step(step: Step, ops: &[Op]) -> TokenStream {
+fn let_step(step: &Step, ops: &[Op]) -> TokenStream {
     match step {
-        Step::One(n) => let_node(n, ops[n.index()]),
+        Step::One(n) => let_node(*n, ops[n.index()]),
         Step::SinCos { sin, cos, arg } => {
-            let (s, c, x) = (var(sin), var(cos), var(arg));
+            let (s, c, x) = (var(*sin), var(*cos), var(*arg));
             quote!(let (#s, #c) = T::sin_cos(#x);)
         }
+        Step::Batch(angles) => {
+            let name = |n: Option<Node>| {
+                n.map_or_else(
+                    || quote!(_),
+                    |n| {
+                        let v = var(n);
+                        quote!(#v)
+                    },
+                )
+            };
+            let sins = angles.iter().map(|a| name(a.sin));
+            let coss = angles.iter().map(|a| name(a.cos));
+            let args = angles.iter().map(|a| input_expr(ops[a.arg.index()]));
+            quote!(let ([#(#sins),*], [#(#coss),*]) = T::sin_cos_array([#(#args),*]);)
+        }
+    }
+}
+
+/// `q[3]` for an input leaf.
+fn input_expr(op: Op) -> TokenStream {
+    match op {
+        Op::Input(r) => {
+            let array = format_ident!("{}", r.array.name());
+            let index = Literal::u32_unsuffixed(r.index);
+            quote!(#array[#index])
+        }
+        other => unreachable!("only inputs are batched, not {other:?}"),
     }
 }
 
@@ -699,6 +795,60 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
 }
 ";
         assert_eq!(text, expected, "got:\n{text}");
+    }
+
+    /// The sines and cosines of several inputs come from one `sin_cos_array`, the inputs
+    /// read in place, `_` for the values no one reads, at the position of the first of them.
+    #[test]
+    fn sines_and_cosines_of_inputs_are_batched() {
+        let g = Graph::new();
+        let v0 = g.input(Array::V, 0);
+        let (q0, q1, q2) = (
+            g.input(Array::Q, 0),
+            g.input(Array::Q, 1),
+            g.input(Array::Q, 2),
+        );
+        let first = g.mul(v0, g.sin(q2));
+        let rest = [g.cos(q0), g.sin(q1), g.cos(q1), g.sin(g.add(q0, q1))];
+        let mut outputs = vec![first];
+        outputs.extend(rest);
+        let s = spec(
+            "f",
+            &[(Array::Q, 3), (Array::V, 1)],
+            Output::Vector(outputs),
+        );
+        let text = pretty(emit_function(&g, &s));
+        let body: Vec<&str> = text
+            .lines()
+            .skip_while(|l| !l.starts_with("pub fn"))
+            .collect();
+        assert_eq!(
+            body[1..7],
+            [
+                "    let v0 = v[0];",
+                "    let v1 = q[0];",
+                "    let v2 = q[1];",
+                "    let ([_, v7, v4], [v6, v8, _]) = T::sin_cos_array([q[0], q[1], q[2]]);",
+                "    let v5 = v0 * v4;",
+                "    let v9 = v1 + v2;",
+            ][..],
+            "got:\n{text}"
+        );
+        assert!(
+            text.contains("let v10 = T::sin(v9);"),
+            "a sum's sine is not batched:\n{text}"
+        );
+
+        let one = spec(
+            "g",
+            &[(Array::Q, 3)],
+            Output::Vector(vec![g.sin(q0), g.cos(q0)]),
+        );
+        let text = pretty(emit_function(&g, &one));
+        assert!(
+            text.contains("T::sin_cos(v1)"),
+            "one angle is not batched:\n{text}"
+        );
     }
 
     #[test]
@@ -874,6 +1024,13 @@ mod rt {
         fn sin_cos(self) -> (Self, Self) {
             (self.sin(), self.cos())
         }
+        fn sin_cos_array<const N: usize>(x: [Self; N]) -> ([Self; N], [Self; N]) {
+            let (mut sin, mut cos) = (x, x);
+            for i in 0..N {
+                (sin[i], cos[i]) = x[i].sin_cos();
+            }
+            (sin, cos)
+        }
     }
     impl Scalar for f64 {
         fn from_f64(x: f64) -> Self { x }
@@ -920,13 +1077,16 @@ mod rt {
                 Output::Vector(odd[3..].to_vec()),
             ]),
         );
+        let (q0, q2) = (g.input(Array::Q, 0), g.input(Array::Q, 2));
+        let angles = [g.sin(q0), g.cos(q1), g.cos(q2), g.sin(q2), g.mul(q2, q0)];
+        let batched = spec("angles", &args, Output::Vector(angles.to_vec()));
         let split_text = emit_function(&g, &split).to_string();
         assert!(
             split_text.contains("part_3"),
             "split into at least 3 pieces"
         );
         let mut program = SCALAR_STUB.to_string();
-        for s in [&split, &whole, &matrix] {
+        for s in [&split, &whole, &matrix, &batched] {
             let mut s = s.clone();
             s.scalar_trait = syn::parse_quote!(crate::rt::Scalar);
             program += &emit_function(&g, &s).to_string();
@@ -949,14 +1109,15 @@ mod rt {
         )
         .ok();
         main += "    let (m, s, w) = shaped(&q, &v, &tau);\n";
-        main +=
-            "    for x in m.iter().flatten().chain([&s]).chain(&w) { println!(\"{x:?}\"); }\n}\n";
+        main += "    for x in m.iter().flatten().chain([&s]).chain(&w) { println!(\"{x:?}\"); }\n";
+        main += "    for x in angles(&q, &v, &tau) { println!(\"{x:?}\"); }\n}\n";
         program += &main;
 
         let mut expected = g.eval(input, &chain);
         expected.extend(g.eval(input, &chain));
         expected.extend(g.eval(input, &[chain[0], chain[1], odd[0], odd[1]]));
         expected.extend(g.eval(input, &odd[2..]));
+        expected.extend(g.eval(input, &angles));
 
         let dir = std::env::temp_dir().join(format!("dynamics-emit-{}", std::process::id()));
         std::fs::create_dir_all(&dir).expect("temp dir");
