@@ -13,7 +13,9 @@
 //! that the composite body needs to move along joint j's motion subspace s_j,
 //! f = I^c_j s_j (F = m v + ω × h, M_P = h × v + I_P ω for s = [v; ω]); then
 //! M_ij = s_iᵀ f for j and each ancestor i, carrying f to each parent frame on the way.
-//! Entries between bodies on different branches are zero and cost nothing.
+//! Entries between bodies on different branches are zero and cost nothing. M depends on the
+//! inertias only through the kinetic energy, so the generated function sums over base
+//! inertial parameters ([`mass_matrix_of_base_parameters`], [`super::base_parameters`]).
 
 use super::geometry::{self, BodyInertia, JointTransform};
 use super::rnea::joint_dofs;
@@ -90,6 +92,19 @@ pub fn motion_subspace(g: &Graph, kind: &JointKind) -> Vec<(Vec3, Vec3)> {
 /// sᵀ f for a motion column s = [v; ω] and a wrench f = [F; M].
 fn project(g: &Graph, column: &(Vec3, Vec3), force: Vec3, moment: Vec3) -> Node {
     g.add(column.0.dot(g, force), column.1.dot(g, moment))
+}
+
+/// [`mass_matrix`] over the base inertial parameters that make it cheapest
+/// ([`super::base_parameters`]): the same M(q), fewer operations.
+pub fn mass_matrix_of_base_parameters(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    inertias: &[BodyInertia],
+) -> Vec<Vec<Node>> {
+    let build = |i: &[BodyInertia]| mass_matrix(g, model, transforms, i);
+    let regrouped = super::base_parameters::regroup(g, model, inertias, |i| build(i).concat());
+    build(&regrouped)
 }
 
 /// M(q), full and symmetric, with armature on the diagonal.

@@ -41,7 +41,7 @@
 
 use super::geometry::{self, BodyInertia, JointTransform};
 use crate::model::{JointKind, LoadKind, Model};
-use crate::sym::{Array, Graph, Mat3, Node, Op, Vec3};
+use crate::sym::{Array, Graph, Mat3, Node, Vec3};
 
 /// The motion of a body: ω, α and the classical acceleration a_P of its origin, in its frame.
 #[derive(Clone, Copy, Debug)]
@@ -297,38 +297,6 @@ fn joint_force(
     }
 }
 
-/// (operations, additions) that computing `outputs` costs: the products, sums and
-/// differences among the nodes they need. The same as [`Graph::op_count`] gives, by a
-/// search from the outputs that visits only those nodes (the graph holds every candidate
-/// that [`base_inertias`] tried).
-fn arithmetic_cost(g: &Graph, outputs: &[Node]) -> (usize, usize) {
-    let mut seen = vec![false; g.len()];
-    let mut stack: Vec<Node> = Vec::new();
-    for &node in outputs {
-        if !std::mem::replace(&mut seen[node.index()], true) {
-            stack.push(node);
-        }
-    }
-    let (mut ops, mut adds) = (0, 0);
-    while let Some(node) = stack.pop() {
-        let op = g.op(node);
-        match op {
-            Op::Add(..) | Op::Sub(..) => {
-                ops += 1;
-                adds += 1;
-            }
-            Op::Mul(..) => ops += 1,
-            _ => {}
-        }
-        for child in op.children() {
-            if !std::mem::replace(&mut seen[child.index()], true) {
-                stack.push(child);
-            }
-        }
-    }
-    (ops, adds)
-}
-
 /// The backward sweep over base inertial parameters: inertias that give the same joint
 /// forces τ as the declared ones (but not the same joint wrenches), with shares of each
 /// body that its joint's motion leaves unchanged moved to the parent
@@ -350,7 +318,7 @@ fn base_inertias(
 ) -> Backward {
     let mut current = inertias.to_vec();
     let mut sweep = declared.clone();
-    let mut best_cost = arithmetic_cost(g, &sweep.tau);
+    let mut best_cost = super::base_parameters::arithmetic_cost(g, &sweep.tau);
     for i in (0..model.bodies.len()).rev() {
         let body = &model.bodies[i];
         let mut best = None;
@@ -366,7 +334,7 @@ fn base_inertias(
                 changes.push((p, own(p, &gained)));
             }
             let candidate = sweep.with(g, model, transforms, inputs, &changes);
-            let cost = arithmetic_cost(g, &candidate.tau);
+            let cost = super::base_parameters::arithmetic_cost(g, &candidate.tau);
             if cost < best_cost {
                 best_cost = cost;
                 best = Some((candidate, kept, gained));

@@ -1,0 +1,89 @@
+//! Base inertial parameters for the functions of the Lagrangian alone.
+//!
+//! M(q), g(q) and q̈ = FD(q, q̇, τ) depend on the bodies' inertias only through the
+//! Lagrangian L = T − V. A share of a body that its joint's motion leaves unchanged
+//! ([`geometry::movable_shares`]: about a revolute axis s the mass, the first moment along s
+//! and an inertia Y (1 − s sᵀ); along a prismatic axis the rotational inertia) moves as if
+//! fixed to the parent: handed to the parent (or dropped at the fixed ground, which changes V
+//! by a constant) it leaves L, and so M, g and q̈, unchanged, while the body's inertia loses
+//! entries and the expansion operations (Khalil and Kleinfinger's regrouping, done at compile
+//! time on numbers). The joint wrenches, the energies and the force analysis are not functions
+//! of L alone and keep the declared inertias.
+//!
+//! [`regroup`] chooses, body by body from the leaves to the root, the share (or none) that
+//! makes a given function cost the fewest operations, then additions.
+
+use super::geometry::{self, BodyInertia};
+use crate::model::Model;
+use crate::sym::{Graph, Node, Op};
+
+/// The inertias, regrouped so that `build` (which expands one function of the Lagrangian
+/// over the inertias it is given) costs the fewest operations; `inertias` unchanged when no
+/// share helps. Every candidate is expanded in `g`; only the chosen one's nodes end up live.
+pub fn regroup(
+    g: &Graph,
+    model: &Model,
+    inertias: &[BodyInertia],
+    build: impl Fn(&[BodyInertia]) -> Vec<Node>,
+) -> Vec<BodyInertia> {
+    let mut current = inertias.to_vec();
+    let mut best_cost = arithmetic_cost(g, &build(&current));
+    for i in (0..model.bodies.len()).rev() {
+        let body = &model.bodies[i];
+        let mut best = None;
+        for share in geometry::movable_shares(g, &body.joint, &current[i]) {
+            let parent = body.parent.map(|p| &current[p]);
+            let Some((kept, gained)) =
+                geometry::move_share(g, &body.joint, &current[i], parent, &share)
+            else {
+                continue;
+            };
+            let mut candidate = current.clone();
+            candidate[i] = kept;
+            if let (Some(p), Some(gained)) = (body.parent, gained) {
+                candidate[p] = gained;
+            }
+            let cost = arithmetic_cost(g, &build(&candidate));
+            if cost < best_cost {
+                best_cost = cost;
+                best = Some(candidate);
+            }
+        }
+        if let Some(candidate) = best {
+            current = candidate;
+        }
+    }
+    current
+}
+
+/// (operations, additions) that computing `outputs` costs: the products, sums and
+/// differences among the nodes they need. The same as [`Graph::op_count`] gives, by a
+/// search from the outputs that visits only those nodes (the graph holds every candidate
+/// that a regrouping tried).
+pub fn arithmetic_cost(g: &Graph, outputs: &[Node]) -> (usize, usize) {
+    let mut seen = vec![false; g.len()];
+    let mut stack: Vec<Node> = Vec::new();
+    for &node in outputs {
+        if !std::mem::replace(&mut seen[node.index()], true) {
+            stack.push(node);
+        }
+    }
+    let (mut ops, mut adds) = (0, 0);
+    while let Some(node) = stack.pop() {
+        let op = g.op(node);
+        match op {
+            Op::Add(..) | Op::Sub(..) => {
+                ops += 1;
+                adds += 1;
+            }
+            Op::Mul(..) => ops += 1,
+            _ => {}
+        }
+        for child in op.children() {
+            if !std::mem::replace(&mut seen[child.index()], true) {
+                stack.push(child);
+            }
+        }
+    }
+    (ops, adds)
+}
