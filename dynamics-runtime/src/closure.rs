@@ -20,7 +20,7 @@
 //! These are run-time loops over small fixed arrays with pivoting, for `T: Scalar +
 //! PartialOrd` (f32, f64, double-double), not straight-line code.
 
-use crate::scalar::{abs, Scalar};
+use crate::scalar::{abs, Real, Scalar};
 use std::fmt;
 
 /// Why a closure or a constrained solve failed.
@@ -197,7 +197,7 @@ impl<const NC: usize, const NV: usize> Closure<NC, NV> {
 
     /// Closes the loops: Newton's method on φ(q) = 0 over the dependent coordinates, from
     /// the values in `q`, until max |φ_i| ≤ `tolerance`; returns the iterations used.
-    pub fn positions<T: Scalar + PartialOrd + Into<f64>>(
+    pub fn positions<T: Real>(
         &self,
         q: &mut [T; NV],
         residual: impl Fn(&[T; NV]) -> [T; NC],
@@ -217,7 +217,7 @@ impl<const NC: usize, const NV: usize> Closure<NC, NV> {
             }
             if iteration == max_iterations || size.partial_cmp(&size).is_none() {
                 return Err(ClosureError::NotConverged {
-                    residual: size.into(),
+                    residual: size.to_f64(),
                     iterations: iteration,
                 });
             }

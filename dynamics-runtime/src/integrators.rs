@@ -23,8 +23,8 @@
 //! `max_iterations` times, and a step that does not converge (or meets a non-finite value)
 //! is an error, not a silent result.
 
-use crate::double_double::DoubleDouble;
 use crate::dynamics::{Dynamics, Lagrangian};
+pub use crate::scalar::Real;
 use crate::scalar::{abs, Scalar};
 use std::fmt;
 
@@ -240,31 +240,6 @@ pub fn implicit_midpoint<M: Dynamics<f64>>(
         iterations: max_iterations,
         last_change,
     })
-}
-
-/// A [`Scalar`] that Newton's method can test and report: ordered, with a nearest `f64`.
-/// Implemented for `f32`, `f64` and [`DoubleDouble`].
-pub trait Real: Scalar + PartialOrd {
-    /// The nearest `f64` (for finiteness tests and error reports).
-    fn to_f64(self) -> f64;
-}
-
-impl Real for f32 {
-    fn to_f64(self) -> f64 {
-        f64::from(self)
-    }
-}
-
-impl Real for f64 {
-    fn to_f64(self) -> f64 {
-        self
-    }
-}
-
-impl Real for DoubleDouble {
-    fn to_f64(self) -> f64 {
-        DoubleDouble::to_f64(self)
-    }
 }
 
 /// max_k |x_k| (NaN entries are left to the finiteness checks).

@@ -19,7 +19,7 @@ pub mod scalar;
 pub mod statics;
 
 pub use double_double::DoubleDouble;
-pub use dynamics::{Dynamics, Energy};
+pub use dynamics::{Dynamics, Energy, Lagrangian};
 pub use dynamics_macros::mechanism;
 pub use mechanism::{FunctionCost, Mechanism};
 pub use model::{
@@ -29,5 +29,5 @@ pub use model::{
 /// The nalgebra version the runtime and the generated `*_na` wrappers use.
 pub use nalgebra;
 pub use reference::{Pose, Reference, Wrench};
-pub use scalar::Scalar;
+pub use scalar::{Real, Scalar};
 pub use statics::{ForceAnalysis, IllConditioned};

@@ -56,6 +56,31 @@ pub trait Scalar:
     }
 }
 
+/// A [`Scalar`] that the run-time solvers (Newton's method, pivoting) can test and report:
+/// ordered, with a nearest `f64`. Implemented for `f32`, `f64` and [`crate::DoubleDouble`].
+pub trait Real: Scalar + PartialOrd {
+    /// The nearest `f64` (for finiteness tests and error reports).
+    fn to_f64(self) -> f64;
+}
+
+impl Real for f32 {
+    fn to_f64(self) -> f64 {
+        f64::from(self)
+    }
+}
+
+impl Real for f64 {
+    fn to_f64(self) -> f64 {
+        self
+    }
+}
+
+impl Real for crate::DoubleDouble {
+    fn to_f64(self) -> f64 {
+        crate::DoubleDouble::to_f64(self)
+    }
+}
+
 /// |x| for an ordered scalar (the run-time solvers' pivoting and convergence tests; the
 /// generated code never needs it). NaN stays NaN.
 pub(crate) fn abs<T: Scalar + PartialOrd>(x: T) -> T {
