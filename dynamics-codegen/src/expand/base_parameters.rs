@@ -1,11 +1,11 @@
 //! Base inertial parameters for the functions of the Lagrangian alone.
 //!
-//! M(q), g(q) and q̈ = FD(q, q̇, τ) depend on the bodies' inertias only through the
-//! Lagrangian L = T − V. A share of a body that its joint's motion leaves unchanged
+//! M(q), C(q, q̇) (Christoffel's, made of M's derivatives), g(q) and q̈ = FD(q, q̇, τ) depend
+//! on the bodies' inertias only through the Lagrangian L = T − V. A share of a body that its joint's motion leaves unchanged
 //! ([`geometry::movable_shares`]: about a revolute axis s the mass, the first moment along s
 //! and an inertia Y (1 − s sᵀ); along a prismatic axis the rotational inertia) moves as if
 //! fixed to the parent: handed to the parent (or dropped at the fixed ground, which changes V
-//! by a constant) it leaves L, and so M, g and q̈, unchanged, while the body's inertia loses
+//! by a constant) it leaves L, and so M, C, g and q̈, unchanged, while the body's inertia loses
 //! entries and the expansion operations (Khalil and Kleinfinger's regrouping, done at compile
 //! time on numbers). The joint wrenches, the energies and the force analysis are not functions
 //! of L alone and keep the declared inertias.

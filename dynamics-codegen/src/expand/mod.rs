@@ -18,10 +18,10 @@
 //!
 //! Symbolic parameters add a `p` argument, declared loads a `loads` argument (Q).
 //!
-//! Inverse dynamics, gravity, bias, the mass matrix and forward dynamics depend on the
-//! inertias only through the Lagrangian, and are expanded over base inertial parameters
-//! ([`base_parameters`]); the energies, joint reactions, Coriolis matrix and force analysis
-//! use the inertias as declared.
+//! Inverse dynamics, gravity, bias, the mass matrix, the Coriolis matrix (Christoffel's,
+//! determined by M(q)) and forward dynamics depend on the inertias only through the
+//! Lagrangian, and are expanded over base inertial parameters ([`base_parameters`]); the
+//! energies, joint reactions and force analysis use the inertias as declared.
 
 pub mod aba;
 pub mod base_parameters;
@@ -243,7 +243,12 @@ pub fn expand(model: &Model, scalar_trait: syn::Path) -> Vec<Function> {
     if outputs.coriolis && nv > 0 {
         let (g, t, i) = setup();
         let v = inputs(&g, Array::V, nv);
-        let c = coriolis::coriolis_matrix(&g, model, &t, &i, &v);
+        // C is the Christoffel-consistent factorization, a function of M(q): base
+        // parameters serve.
+        let build = |i: &[geometry::BodyInertia]| coriolis::coriolis_matrix(&g, model, &t, i, &v);
+        let c = build(&base_parameters::regroup(&g, model, &i, |i| {
+            build(i).concat()
+        }));
         let doc =
             "Coriolis matrix C(q, q̇), the Christoffel-consistent one: C q̇ is the Coriolis and \
                    centrifugal force and Ṁ − 2C is skew-symmetric."
@@ -498,7 +503,7 @@ pub(crate) mod tests {
     }
 
     #[test]
-    fn base_parameters_give_the_same_mass_matrix_and_accelerations_for_fewer_operations() {
+    fn base_parameters_give_the_same_mass_coriolis_and_accelerations_for_fewer_operations() {
         let mechanism: crate::syntax::Mechanism = syn::parse2(puma_tokens()).expect("parses");
         let model = crate::model::lower(&mechanism).expect("valid");
         let (g, t, i) = fresh_graph(&model);
@@ -524,6 +529,14 @@ pub(crate) mod tests {
             count(&g, &declared)
         );
         assert!(count(&g2, &aba_regrouped) < count(&g, &aba_declared));
+        let c_declared = coriolis::coriolis_matrix(&g, &model, &t, &i, &v).concat();
+        let c_of = |i: &[geometry::BodyInertia]| coriolis::coriolis_matrix(&g, &model, &t, i, &v);
+        let c_regrouped = c_of(&base_parameters::regroup(&g, &model, &i, |i| {
+            c_of(i).concat()
+        }))
+        .concat();
+        // Measured: 1868 → 1328.
+        assert!(count(&g, &c_regrouped) * 10 <= count(&g, &c_declared) * 8);
         for k in 0..5 {
             let input = |r: crate::sym::InputRef| {
                 let x = f64::from(r.index) + 7.0 * f64::from(k);
@@ -538,6 +551,8 @@ pub(crate) mod tests {
             assert!(close(&m0, &m1), "M: {m0:?} vs {m1:?}");
             let (a0, a1) = (g.eval(input, &aba_declared), g2.eval(input, &aba_regrouped));
             assert!(close(&a0, &a1), "q̈: {a0:?} vs {a1:?}");
+            let (c0, c1) = (g.eval(input, &c_declared), g.eval(input, &c_regrouped));
+            assert!(close(&c0, &c1), "C: {c0:?} vs {c1:?}");
         }
     }
 
