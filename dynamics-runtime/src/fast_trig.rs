@@ -310,17 +310,32 @@ mod tests {
         })
     }
 
+    /// Every length from 0 to 9 (whole groups, padded last groups), bit for bit.
     #[test]
     fn array_is_elementwise() {
-        let x = [-3.0, -1.0, 0.1, PI / 4.0, 2.0, 1e5, f64::NAN];
-        let (s, c) = super::sin_cos_array(&x);
-        for i in 0..x.len() {
-            let (s1, c1) = sin_cos(x[i]);
-            assert_eq!(
-                (s[i].to_bits(), c[i].to_bits()),
-                (s1.to_bits(), c1.to_bits())
-            );
+        fn check<const N: usize>(all: &[f64; 9]) {
+            let x: [f64; N] = std::array::from_fn(|i| all[i]);
+            let (s, c) = super::sin_cos_array(&x);
+            for i in 0..N {
+                let (s1, c1) = sin_cos(x[i]);
+                assert_eq!(
+                    (s[i].to_bits(), c[i].to_bits()),
+                    (s1.to_bits(), c1.to_bits()),
+                    "angle {i} of {N}"
+                );
+            }
         }
+        let x = [-3.0, -1.0, 0.1, PI / 4.0, 2.0, 1e5, f64::NAN, -0.0, 7.5];
+        check::<0>(&x);
+        check::<1>(&x);
+        check::<2>(&x);
+        check::<3>(&x);
+        check::<4>(&x);
+        check::<5>(&x);
+        check::<6>(&x);
+        check::<7>(&x);
+        check::<8>(&x);
+        check::<9>(&x);
     }
 
     #[test]

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The generated code against Pinocchio, side by side: one table of ns/call and speedups.
 #
-#   bash models/benches/pinocchio/compare.sh [--quick] [--models "ur5 panda quadruped"]
+#   bash models/benches/pinocchio/compare.sh [--quick] [--native] [--models "ur5 panda quadruped"]
 #
 # Needs Python >= 3.9 (with venv), g++ (C++17) and the Rust toolchain, and the network for
 # the first run. Steps:
@@ -23,7 +23,9 @@
 # compared. The quadruped's foot loads are zero for the generated code and Pinocchio gets no
 # external forces. Timings of a busy machine are noisy: the load average is printed with
 # the table. --quick shortens both sides' measurements (for trying the script, not for
-# figures).
+# figures). --native builds the generated code for this CPU too (RUSTFLAGS
+# "-C target-cpu=native", in target/native), as Pinocchio is always built (-march=native);
+# without it ours is built for baseline x86-64.
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -32,11 +34,13 @@ PIN_VERSION="${PIN_VERSION:-4.1.0}"
 EIGEN_VERSION="${EIGEN_VERSION:-3.4.1}"
 MODELS="pendulum double_pendulum planar3 ur5 panda quadruped"
 QUICK=0
+NATIVE=0
 BASELINE=compare_pinocchio
 
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) QUICK=1 ;;
+    --native) NATIVE=1 ;;
     --models) MODELS="$2"; shift ;;
     -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
     *) echo "compare.sh: unknown argument $1 (try --help)" >&2; exit 2 ;;
@@ -138,6 +142,12 @@ else
 fi
 
 # ---- 4. both sides ----------------------------------------------------------------------------
+RUST_BUILD="baseline x86-64"
+if [ "$NATIVE" = 1 ]; then
+  export RUSTFLAGS="-C target-cpu=native"
+  export CARGO_TARGET_DIR="$ROOT/target/native"
+  RUST_BUILD="-C target-cpu=native"
+fi
 step "building the Rust benchmark (cargo bench -p models --bench dynamics --no-run)"
 cargo bench -q -p models --bench dynamics --no-run 2> "$HERE/build/cargo.log" ||
   { tail -30 "$HERE/build/cargo.log" >&2; fail "the benchmark does not build (log: build/cargo.log)"; }
@@ -174,7 +184,7 @@ printf 'end\t-\t%s\n' "$(cut -d' ' -f1-3 /proc/loadavg)" >> "$HERE/build/load.ts
 step "joining the results"
 CPU="$(LC_ALL=C lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1)"
 "$VENV/bin/python" - "$HERE/build" "$CRITERION" "$BASELINE" "$CPU" "$(nproc)" \
-  "$QUICK" "$(rustc --version)" "$(g++ --version | head -1)" \
+  "$QUICK" "$(rustc --version), $RUST_BUILD" "$(g++ --version | head -1)" \
   $MODELS <<'PYTHON' || fail "could not join the two sides' results"
 import json, os, re, sys
 
