@@ -30,6 +30,34 @@ fn falling_rod_lowers() {
     assert_eq!(m.outputs, Outputs::all());
 }
 
+/// A matrix printed by a tool that computed a quarter turn from angles (Pinocchio's Panda):
+/// its 2.2e-16 residues become exact zeros, other entries stay as written.
+#[test]
+fn explicit_rotations_lose_their_rounding_residue() {
+    let m = lower_tokens(quote! {
+        struct Arm;
+        body a { mass: 1.0, shape: sphere(radius: 0.1) }
+        body b { mass: 1.0, shape: sphere(radius: 0.1) }
+        joint j1: revolute(ground -> a) {
+            axis: z,
+            rotation: [[1.0, 0.0, 0.0], [0.0, 2.220446049250313e-16, 1.0], [0.0, -1.0, 2.220446049250313e-16]]
+        }
+        joint j2: revolute(a -> b) {
+            axis: z,
+            rotation: [[0.6, 0.8, 0.0], [-0.8, 0.6, 0.0], [0.0, 0.0, 1.0]]
+        }
+    })
+    .expect("valid");
+    assert_eq!(
+        m.bodies[0].joint.rotation_in_parent,
+        [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]]
+    );
+    assert_eq!(
+        m.bodies[1].joint.rotation_in_parent,
+        [[0.6, 0.8, 0.0], [-0.8, 0.6, 0.0], [0.0, 0.0, 1.0]]
+    );
+}
+
 #[test]
 fn fixed_joints_merge_into_parts_in_the_parent_frame() {
     let m = lower_tokens(quote! {
