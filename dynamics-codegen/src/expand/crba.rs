@@ -103,7 +103,8 @@ pub fn mass_matrix_of_base_parameters(
     inertias: &[BodyInertia],
 ) -> Vec<Vec<Node>> {
     let build = |i: &[BodyInertia]| mass_matrix(g, model, transforms, i);
-    let regrouped = super::base_parameters::regroup(g, model, inertias, |i| build(i).concat());
+    let regrouped =
+        super::base_parameters::regroup(g, model, transforms, inertias, |i| build(i).concat());
     build(&regrouped)
 }
 

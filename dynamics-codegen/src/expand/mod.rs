@@ -154,7 +154,7 @@ pub fn forward_dynamics_by(
             let build = |i: &[geometry::BodyInertia]| {
                 aba::forward_dynamics(&g, model, &t, i, &v, &tau, &external)
             };
-            build(&base_parameters::regroup(&g, model, &i, build))
+            build(&base_parameters::regroup(&g, model, &t, &i, build))
         }
         ForwardMethod::MassMatrixLdlt => {
             let zero = vec![g.zero(); nv];
@@ -246,7 +246,7 @@ pub fn expand(model: &Model, scalar_trait: syn::Path) -> Vec<Function> {
         // C is the Christoffel-consistent factorization, a function of M(q): base
         // parameters serve.
         let build = |i: &[geometry::BodyInertia]| coriolis::coriolis_matrix(&g, model, &t, i, &v);
-        let c = build(&base_parameters::regroup(&g, model, &i, |i| {
+        let c = build(&base_parameters::regroup(&g, model, &t, &i, |i| {
             build(i).concat()
         }));
         let doc =
@@ -531,7 +531,7 @@ pub(crate) mod tests {
         assert!(count(&g2, &aba_regrouped) < count(&g, &aba_declared));
         let c_declared = coriolis::coriolis_matrix(&g, &model, &t, &i, &v).concat();
         let c_of = |i: &[geometry::BodyInertia]| coriolis::coriolis_matrix(&g, &model, &t, i, &v);
-        let c_regrouped = c_of(&base_parameters::regroup(&g, &model, &i, |i| {
+        let c_regrouped = c_of(&base_parameters::regroup(&g, &model, &t, &i, |i| {
             c_of(i).concat()
         }))
         .concat();

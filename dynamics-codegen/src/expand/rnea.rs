@@ -171,7 +171,7 @@ pub fn sweep(
         .map(|(i, b)| own(i, b))
         .collect();
     let declared = Backward::new(g, model, transforms, inputs, declared);
-    let regrouped = base_inertias(g, model, transforms, inputs, inertias, &declared, own);
+    let (regrouped, _) = base_inertias(g, model, transforms, inputs, inertias, &declared, own);
     Sweep {
         tau: regrouped.tau,
         wrenches: declared.joint,
@@ -315,7 +315,7 @@ fn base_inertias(
     inertias: &[BodyInertia],
     declared: &Backward,
     own: impl Fn(usize, &BodyInertia) -> (Vec3, Vec3),
-) -> Backward {
+) -> (Backward, Vec<BodyInertia>) {
     let mut current = inertias.to_vec();
     let mut sweep = declared.clone();
     let mut best_cost = super::base_parameters::arithmetic_cost(g, &sweep.tau);
@@ -348,7 +348,35 @@ fn base_inertias(
             }
         }
     }
-    sweep
+    (sweep, current)
+}
+
+/// The base inertial parameters that make inverse dynamics (with gravity, q̇ and q̈ as
+/// inputs) cheapest, as [`sweep`] chooses them: a choice computed once, incrementally, that
+/// serves the other functions of the Lagrangian too ([`super::base_parameters`]).
+pub fn base_parameters(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    inertias: &[BodyInertia],
+) -> Vec<BodyInertia> {
+    let velocity: Vec<Node> = (0..model.nv).map(|k| g.input(Array::V, k)).collect();
+    let acceleration: Vec<Node> = (0..model.nv).map(|k| g.input(Array::A, k)).collect();
+    let inputs = SweepInputs {
+        velocity: &velocity,
+        acceleration: &acceleration,
+        gravity: true,
+        loads: false,
+    };
+    let motions = motions(g, model, transforms, &inputs);
+    let own = |i: usize, inertia: &BodyInertia| body_wrench(g, &motions[i], inertia);
+    let declared: Vec<(Vec3, Vec3)> = inertias
+        .iter()
+        .enumerate()
+        .map(|(i, b)| own(i, b))
+        .collect();
+    let declared = Backward::new(g, model, transforms, &inputs, declared);
+    base_inertias(g, model, transforms, &inputs, inertias, &declared, own).1
 }
 
 /// Number of velocity coordinates of a joint.
