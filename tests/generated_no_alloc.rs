@@ -112,6 +112,41 @@ macro_rules! gyroscopic_body {
 
 #[test]
 fn generated_functions_allocate_nothing() {
+    // The allocator is global: the test harness's own threads can allocate while the
+    // functions run (seen once, on a loaded machine). Code that allocates does so on every
+    // run, so three runs with one of them clean is the test.
+    let mut changes = Vec::new();
+    for _ in 0..3 {
+        let (sums, change) = run_every_function();
+        // Something was computed (the values themselves are checked elsewhere).
+        assert!(sums.iter().all(|s| s.is_finite()), "{sums:?}");
+        let counts = (
+            change.allocations,
+            change.reallocations,
+            change.deallocations,
+        );
+        changes.push(counts);
+        if counts == (0, 0, 0) {
+            break;
+        }
+    }
+    assert_eq!(
+        changes.last(),
+        Some(&(0, 0, 0)),
+        "the generated code allocated (allocations, reallocations, deallocations) in every run: {changes:?}"
+    );
+    use dynamics_runtime::Mechanism;
+    assert_eq!(
+        (
+            RandomTree06::PARAMETER_NAMES.len(),
+            RandomTree06::NUM_LOAD_INPUTS
+        ),
+        (1, 12)
+    );
+}
+
+/// Every function once, and what the allocator saw meanwhile.
+fn run_every_function() -> ([f64; 10], stats_alloc::Stats) {
     let region = Region::new(GLOBAL);
     let sums = [
         every_function!(f64, Ur5, nq: 6, nv: 6),
@@ -125,24 +160,5 @@ fn generated_functions_allocate_nothing() {
         gyroscopic_body!(f64),
         f64::from(gyroscopic_body!(f32)),
     ];
-    let change = region.change();
-    assert_eq!(
-        (
-            change.allocations,
-            change.reallocations,
-            change.deallocations
-        ),
-        (0, 0, 0),
-        "the generated code allocated: {change:?}"
-    );
-    // Something was computed (the values themselves are checked elsewhere).
-    assert!(sums.iter().all(|s| s.is_finite()), "{sums:?}");
-    use dynamics_runtime::Mechanism;
-    assert_eq!(
-        (
-            RandomTree06::PARAMETER_NAMES.len(),
-            RandomTree06::NUM_LOAD_INPUTS
-        ),
-        (1, 12)
-    );
+    (sums, region.change())
 }
