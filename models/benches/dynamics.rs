@@ -15,7 +15,9 @@
 //! 20 of `benches/pinocchio/quadruped.json` (written by the `export_model` example) for the
 //! quadruped, 20 seeded random states for the others. The planar chains of `models::chains`
 //! (1 to 30 links) are timed for their three outputs (inverse dynamics, mass matrix, forward
-//! dynamics): `cargo bench -p models --bench dynamics -- '^Chain'`. The Pinocchio comparison
+//! dynamics): `cargo bench -p models --bench dynamics -- '^Chain'`. The linkages of
+//! `models::linkages` are timed for their force analysis and loop-closure functions
+//! (generated code only). The Pinocchio comparison
 //! (`benches/pinocchio/compare.sh`) reads the medians of the same benchmarks.
 //!
 //! The quadruped's foot loads are zero in the generated calls and absent (`None`) in the
@@ -28,6 +30,10 @@ use dynamics_runtime::reference::Wrench;
 use dynamics_runtime::{JointKind, Mechanism, Model, Reference};
 use models::anchors::{DoublePendulum, Panda, Pendulum, Planar3, Ur5};
 use models::chains::{Chain1, Chain10, Chain15, Chain2, Chain20, Chain25, Chain3, Chain30, Chain5};
+use models::linkages::{
+    FourBar, FourBarLoaded, FourBarRockerDriven, GyroscopicRotor, OverhungRotor, SliderCrank,
+    SupportedBeam,
+};
 use models::puma560::Puma560;
 use models::quadruped::Quadruped;
 use models::seed::{EccentricRotor, FallingRod, GyroscopicBody};
@@ -517,6 +523,121 @@ bench_model!(planar3_urdf, Planar3Urdf, PLANAR3, [], all, checked);
 bench_model!(ur5_urdf, Ur5Urdf, UR5, [], all, checked);
 bench_model!(panda_urdf, PandaUrdf, PANDA, [], all, checked);
 
+/// The linkages (`models::linkages`): `<Model>/force_analysis/generated` and, for the closed
+/// loops, `<Model>/constraint_{residual,jacobian,bias}/generated`, on 20 seeded random
+/// states. Generated code only: the runtime reference has no force analysis. The states need
+/// not close the loops: the code is straight-line, its time does not depend on the values.
+macro_rules! bench_linkage {
+    ($c:expr, $m:ty, $seed:literal, $loads:expr, $analysis:expr $(, $closure:ident)?) => {{
+        const NQ: usize = <$m as Mechanism>::NQ;
+        const NV: usize = <$m as Mechanism>::NV;
+        let mut rng = SplitMix($seed);
+        let states: Vec<([f64; NQ], [f64; NV], [f64; NV])> = (0..RANDOM_STATES)
+            .map(|_| {
+                (
+                    std::array::from_fn(|_| rng.uniform(-PI, PI)),
+                    std::array::from_fn(|_| rng.uniform(-2.0, 2.0)),
+                    std::array::from_fn(|_| rng.uniform(-5.0, 5.0)),
+                )
+            })
+            .collect();
+        let loads = $loads;
+        let analysis = $analysis;
+        let mut group = $c.benchmark_group(<$m as Mechanism>::NAME);
+        group.sampling_mode(SamplingMode::Flat);
+        let mut k = 0;
+        group.bench_function("force_analysis/generated", |b| {
+            b.iter(|| {
+                let (q, v, a) = &states[k % states.len()];
+                k += 1;
+                black_box(analysis(black_box(q), v, a, &loads))
+            })
+        });
+        $(
+            let _ = stringify!($closure);
+            group.bench_function("constraint_residual/generated", |b| {
+                b.iter(|| {
+                    let (q, _, _) = &states[k % states.len()];
+                    k += 1;
+                    black_box(<$m>::constraint_residual(black_box(q)))
+                })
+            });
+            group.bench_function("constraint_jacobian/generated", |b| {
+                b.iter(|| {
+                    let (q, _, _) = &states[k % states.len()];
+                    k += 1;
+                    black_box(<$m>::constraint_jacobian(black_box(q)))
+                })
+            });
+            group.bench_function("constraint_bias/generated", |b| {
+                b.iter(|| {
+                    let (q, v, _) = &states[k % states.len()];
+                    k += 1;
+                    black_box(<$m>::constraint_bias(black_box(q), v))
+                })
+            });
+        )?
+        group.finish();
+    }};
+}
+
+fn linkages(c: &mut Criterion) {
+    bench_linkage!(
+        c,
+        SupportedBeam,
+        2001,
+        [1.0; 6],
+        SupportedBeam::force_analysis
+    );
+    let no_loads = [0.0_f64; 0];
+    bench_linkage!(
+        c,
+        FourBar,
+        2002,
+        no_loads,
+        |q, v, a, _: &[f64; 0]| FourBar::force_analysis(q, v, a),
+        closure
+    );
+    bench_linkage!(
+        c,
+        FourBarRockerDriven,
+        2003,
+        no_loads,
+        |q, v, a, _: &[f64; 0]| FourBarRockerDriven::force_analysis(q, v, a),
+        closure
+    );
+    bench_linkage!(
+        c,
+        SliderCrank,
+        2004,
+        no_loads,
+        |q, v, a, _: &[f64; 0]| SliderCrank::force_analysis(q, v, a),
+        closure
+    );
+    bench_linkage!(
+        c,
+        FourBarLoaded,
+        2005,
+        [1.0; 3],
+        FourBarLoaded::force_analysis,
+        closure
+    );
+    bench_linkage!(
+        c,
+        GyroscopicRotor,
+        2006,
+        no_loads,
+        |q, v, a, _: &[f64; 0]| GyroscopicRotor::force_analysis(q, v, a)
+    );
+    bench_linkage!(
+        c,
+        OverhungRotor,
+        2007,
+        [1.0; 3],
+        OverhungRotor::force_analysis
+    );
+}
+
 /// Short by default, so that the whole file runs in minutes; the command line overrides
 /// these (`--warm-up-time`, `--measurement-time`, `--sample-size`), as the comparison
 /// script does.
@@ -553,6 +674,11 @@ mod groups {
         targets = chain1, chain2, chain3, chain5, chain10, chain15, chain20, chain25, chain30
     }
     criterion_group! {
+        name = linkages;
+        config = config();
+        targets = super::linkages
+    }
+    criterion_group! {
         name = urdf_twins;
         config = config();
         targets = pendulum_urdf, double_pendulum_urdf, planar3_urdf, ur5_urdf, panda_urdf
@@ -564,5 +690,6 @@ criterion_main!(
     groups::robots,
     groups::seed,
     groups::chains,
+    groups::linkages,
     groups::urdf_twins
 );
