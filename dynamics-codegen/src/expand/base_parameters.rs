@@ -31,7 +31,16 @@ pub fn regroup(
     if declared.0 * model.bodies.len() > SEARCH_BUDGET {
         return super::rnea::base_parameters(g, model, transforms, inertias);
     }
-    regroup_by(g, model, inertias, |i| arithmetic_cost(g, &build(i)))
+    let start = build(inertias);
+    greedy(
+        g,
+        model,
+        inertias,
+        start,
+        |outputs| arithmetic_cost(g, outputs),
+        |_, candidate, _| build(candidate),
+    )
+    .1
 }
 
 /// The most operations (the declared function's, times the number of bodies) for which
@@ -44,15 +53,24 @@ pub fn regroup(
 /// (0.3 s and 0.5 s before base parameters reached beyond inverse dynamics).
 pub const SEARCH_BUDGET: usize = 50_000;
 
-/// [`regroup`] with any cost of the candidate inertias.
-fn regroup_by(
+/// The greedy walk of every regrouping: bodies from the leaves to the root, so that what a
+/// body receives moves on with it; for each, every movable share
+/// ([`geometry::movable_shares`]) is tried and the one that makes the cost lowest (below the
+/// current one) is kept. The caller's state `S` is what the cost is read from (the expanded
+/// function, or an incrementally updated sweep): `change(state, candidate, changed)` gives
+/// the state for the candidate inertias, of which the bodies `changed` differ from the
+/// current ones. Returns the final state and inertias.
+pub fn greedy<S>(
     g: &Graph,
     model: &Model,
     inertias: &[BodyInertia],
-    cost: impl Fn(&[BodyInertia]) -> (usize, usize),
-) -> Vec<BodyInertia> {
+    start: S,
+    cost: impl Fn(&S) -> (usize, usize),
+    change: impl Fn(&S, &[BodyInertia], &[usize]) -> S,
+) -> (S, Vec<BodyInertia>) {
     let mut current = inertias.to_vec();
-    let mut best_cost = cost(&current);
+    let mut state = start;
+    let mut best_cost = cost(&state);
     for i in (0..model.bodies.len()).rev() {
         let body = &model.bodies[i];
         let mut best = None;
@@ -65,20 +83,24 @@ fn regroup_by(
             };
             let mut candidate = current.clone();
             candidate[i] = kept;
+            let mut changed = vec![i];
             if let (Some(p), Some(gained)) = (body.parent, gained) {
                 candidate[p] = gained;
+                changed.push(p);
             }
-            let c = cost(&candidate);
+            let next = change(&state, &candidate, &changed);
+            let c = cost(&next);
             if c < best_cost {
                 best_cost = c;
-                best = Some(candidate);
+                best = Some((next, candidate));
             }
         }
-        if let Some(candidate) = best {
+        if let Some((next, candidate)) = best {
+            state = next;
             current = candidate;
         }
     }
-    current
+    (state, current)
 }
 
 /// (operations, additions) that computing `outputs` costs: the products, sums and

@@ -302,11 +302,9 @@ fn joint_force(
 /// body that its joint's motion leaves unchanged moved to the parent
 /// ([`geometry::movable_shares`]; the regrouping of inertial parameters of Khalil and
 /// Kleinfinger, "Minimum operations and minimum parameters of the dynamic models of tree
-/// structure robots", 1987).
-///
-/// Bodies are visited from the leaves to the root, so that what a body receives moves on
-/// with it; for each, the share (or none) that makes τ cost the fewest operations (then
-/// additions) is taken.
+/// structure robots", 1987), chosen by [`super::base_parameters::greedy`] to make τ cost the
+/// fewest operations (then additions). Each candidate redoes only the changed bodies' paths
+/// to the root ([`Backward::with`]).
 fn base_inertias(
     g: &Graph,
     model: &Model,
@@ -316,39 +314,20 @@ fn base_inertias(
     declared: &Backward,
     own: impl Fn(usize, &BodyInertia) -> (Vec3, Vec3),
 ) -> (Backward, Vec<BodyInertia>) {
-    let mut current = inertias.to_vec();
-    let mut sweep = declared.clone();
-    let mut best_cost = super::base_parameters::arithmetic_cost(g, &sweep.tau);
-    for i in (0..model.bodies.len()).rev() {
-        let body = &model.bodies[i];
-        let mut best = None;
-        for share in geometry::movable_shares(g, &body.joint, &current[i]) {
-            let parent = body.parent.map(|p| &current[p]);
-            let Some((kept, gained)) =
-                geometry::move_share(g, &body.joint, &current[i], parent, &share)
-            else {
-                continue;
-            };
-            let mut changes = vec![(i, own(i, &kept))];
-            if let (Some(p), Some(gained)) = (body.parent, gained) {
-                changes.push((p, own(p, &gained)));
-            }
-            let candidate = sweep.with(g, model, transforms, inputs, &changes);
-            let cost = super::base_parameters::arithmetic_cost(g, &candidate.tau);
-            if cost < best_cost {
-                best_cost = cost;
-                best = Some((candidate, kept, gained));
-            }
-        }
-        if let Some((candidate, kept, gained)) = best {
-            sweep = candidate;
-            current[i] = kept;
-            if let (Some(p), Some(gained)) = (body.parent, gained) {
-                current[p] = gained;
-            }
-        }
-    }
-    (sweep, current)
+    super::base_parameters::greedy(
+        g,
+        model,
+        inertias,
+        declared.clone(),
+        |sweep| super::base_parameters::arithmetic_cost(g, &sweep.tau),
+        |sweep, candidate, changed| {
+            let changes: Vec<(usize, (Vec3, Vec3))> = changed
+                .iter()
+                .map(|&k| (k, own(k, &candidate[k])))
+                .collect();
+            sweep.with(g, model, transforms, inputs, &changes)
+        },
+    )
 }
 
 /// The base inertial parameters that make inverse dynamics (with gravity, q̇ and q̈ as
