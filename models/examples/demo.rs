@@ -12,7 +12,7 @@ use models::scenes::{PlanarArm, PlanarArmIn3d};
 use models::seed::{EccentricRotor, FallingRod, GyroscopicBody};
 use nalgebra::DMatrix;
 use std::hint::black_box;
-use support::{median_ns, uniform};
+use support::{median_ns, relative_difference, uniform};
 
 mod support;
 
@@ -133,19 +133,12 @@ fn report<M: Mechanism>(id: Id, mm: Mm, fd: Fd, id_dd: IdDd) {
     let mut err = [0.0_f64; 3];
     let mut err_dd = 0.0_f64;
     let mut exact = vec![Dd::new(0.0); nv];
-    let relative = |g: &[f64], r: &[f64]| {
-        let scale = 1.0 + r.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
-        g.iter()
-            .zip(r)
-            .fold(0.0_f64, |a, (x, y)| a.max((x - y).abs()))
-            / scale
-    };
     for [q, v, a, t] in &states {
         reference
             .inverse_dynamics(q, v, a, None::<&[Wrench<f64>]>, &mut out)
             .expect("sizes");
         id(q, v, a, &mut gen);
-        err[0] = err[0].max(relative(&gen, &out));
+        err[0] = err[0].max(relative_difference(&gen, &out));
         let widen = |x: &[f64]| x.iter().map(|&y| Dd::new(y)).collect::<Vec<_>>();
         id_dd(&widen(q), &widen(v), &widen(a), &mut exact);
         let scale = 1.0 + exact.iter().fold(0.0_f64, |m, x| m.max(x.to_f64().abs()));
@@ -159,12 +152,12 @@ fn report<M: Mechanism>(id: Id, mm: Mm, fd: Fd, id_dd: IdDd) {
             .map(|(i, j)| m[(i, j)])
             .collect();
         mm(q, &mut gen_m);
-        err[1] = err[1].max(relative(&gen_m, &rows));
+        err[1] = err[1].max(relative_difference(&gen_m, &rows));
         reference
             .forward_dynamics(q, v, t, None, &mut out)
             .expect("sizes");
         fd(q, v, t, &mut gen);
-        err[2] = err[2].max(relative(&gen, &out));
+        err[2] = err[2].max(relative_difference(&gen, &out));
     }
     let [q, v, a, t] = &states[0];
     let timings = [

@@ -24,7 +24,7 @@ use plotters::prelude::*;
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::hint::black_box;
-use support::{median_ns, uniform};
+use support::{median_ns, relative_difference, uniform};
 
 mod support;
 
@@ -69,15 +69,6 @@ impl Row {
     }
 }
 
-fn relative(generated: &[f64], reference: &[f64]) -> f64 {
-    let scale = 1.0 + reference.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    generated
-        .iter()
-        .zip(reference)
-        .fold(0.0_f64, |m, (g, r)| m.max((g - r).abs()))
-        / scale
-}
-
 fn cost<M: Mechanism>(function: &str) -> FunctionCost {
     *M::FUNCTIONS
         .iter()
@@ -109,14 +100,23 @@ macro_rules! measure {
             reference
                 .inverse_dynamics(q, v, a, None, &mut vector)
                 .expect("sizes");
-            errors[0] = errors[0].max(relative(&<$m>::inverse_dynamics(q, v, a), &vector));
+            errors[0] = errors[0].max(relative_difference(
+                &<$m>::inverse_dynamics(q, v, a),
+                &vector,
+            ));
             reference.mass_matrix(q, &mut matrix).expect("sizes");
             let by_rows: Vec<f64> = matrix.transpose().as_slice().to_vec();
-            errors[1] = errors[1].max(relative(<$m>::mass_matrix(q).as_flattened(), &by_rows));
+            errors[1] = errors[1].max(relative_difference(
+                <$m>::mass_matrix(q).as_flattened(),
+                &by_rows,
+            ));
             reference
                 .forward_dynamics(q, v, a, None, &mut vector)
                 .expect("sizes");
-            errors[2] = errors[2].max(relative(&<$m>::forward_dynamics(q, v, a), &vector));
+            errors[2] = errors[2].max(relative_difference(
+                &<$m>::forward_dynamics(q, v, a),
+                &vector,
+            ));
         }
         for (e, (_, label)) in errors.iter().zip(FUNCTIONS) {
             assert!(
@@ -194,6 +194,34 @@ fn color(index: usize) -> RGBColor {
     ][index % 3]
 }
 
+/// Log-scaled joints against a log-scaled quantity.
+type LogLog = Cartesian2d<LogCoord<f64>, LogCoord<f64>>;
+
+/// One panel of the chart: joints (1 to 30) against `y_desc` (1 to 10⁵), both on log scales,
+/// with its caption and a light grid.
+fn log_log_panel<'a, 'b>(
+    area: &'a DrawingArea<SVGBackend<'b>, plotters::coord::Shift>,
+    caption: &str,
+    y_desc: &str,
+) -> Result<ChartContext<'a, SVGBackend<'b>, LogLog>, Box<dyn std::error::Error>> {
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d((0.9f64..35f64).log_scale(), (1f64..1e5f64).log_scale())?;
+    chart
+        .configure_mesh()
+        .light_line_style(WHITE)
+        .bold_line_style(RGBColor(220, 220, 220))
+        .x_desc("joints")
+        .y_desc(y_desc)
+        .x_label_formatter(&|x| format!("{x:.0}"))
+        .y_label_formatter(&|y| format!("{y:.0}"))
+        .draw()?;
+    Ok(chart)
+}
+
 /// Left: ns per call against joints, generated (filled, solid) and reference (open,
 /// dashed). Right: operations of the generated code against joints, with n and n² guides.
 fn draw(rows: &[Row], path: &str) -> Result<(), Box<dyn std::error::Error>> {
@@ -207,21 +235,11 @@ fn draw(rows: &[Row], path: &str) -> Result<(), Box<dyn std::error::Error>> {
             .collect()
     };
 
-    let mut chart = ChartBuilder::on(&panels[0])
-        .caption("planar chains: time per call", ("sans-serif", 20))
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d((0.9f64..35f64).log_scale(), (1f64..1e5f64).log_scale())?;
-    chart
-        .configure_mesh()
-        .light_line_style(WHITE)
-        .bold_line_style(RGBColor(220, 220, 220))
-        .x_desc("joints")
-        .y_desc("ns per call (median)")
-        .x_label_formatter(&|x| format!("{x:.0}"))
-        .y_label_formatter(&|y| format!("{y:.0}"))
-        .draw()?;
+    let mut chart = log_log_panel(
+        &panels[0],
+        "planar chains: time per call",
+        "ns per call (median)",
+    )?;
     for (i, (_, function)) in FUNCTIONS.iter().enumerate() {
         let c = color(i);
         let generated = series(function, &|r| r.generated_ns);
@@ -253,24 +271,11 @@ fn draw(rows: &[Row], path: &str) -> Result<(), Box<dyn std::error::Error>> {
         .position(SeriesLabelPosition::UpperLeft)
         .draw()?;
 
-    let mut chart = ChartBuilder::on(&panels[1])
-        .caption(
-            "planar chains: operations of the generated code",
-            ("sans-serif", 20),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d((0.9f64..35f64).log_scale(), (1f64..1e5f64).log_scale())?;
-    chart
-        .configure_mesh()
-        .light_line_style(WHITE)
-        .bold_line_style(RGBColor(220, 220, 220))
-        .x_desc("joints")
-        .y_desc("mul + add + div + trig")
-        .x_label_formatter(&|x| format!("{x:.0}"))
-        .y_label_formatter(&|y| format!("{y:.0}"))
-        .draw()?;
+    let mut chart = log_log_panel(
+        &panels[1],
+        "planar chains: operations of the generated code",
+        "mul + add + div + trig",
+    )?;
     let grey = RGBColor(160, 160, 160);
     // Guides of slope 1 and 2: 20 n and 2 n².
     for (label, scale, power) in [("∝ n", 20.0, 1), ("∝ n²", 2.0, 2)] {

@@ -1,4 +1,5 @@
-//! What the examples share: timing and a small deterministic generator.
+//! What the examples share: timing, a small deterministic generator, and how generated
+//! outputs are compared with the reference's.
 
 use std::time::Instant;
 
@@ -23,4 +24,15 @@ pub fn uniform(seed: &mut u64, lo: f64, hi: f64) -> f64 {
         .wrapping_mul(6364136223846793005)
         .wrapping_add(1442695040888963407);
     lo + (hi - lo) * ((*seed >> 11) as f64 / (1u64 << 53) as f64)
+}
+
+/// max |generated − reference| / (1 + max |reference|): the difference the examples report.
+#[allow(dead_code)] // each example compiles this module; charts.rs compares with double-double
+pub fn relative_difference(generated: &[f64], reference: &[f64]) -> f64 {
+    let scale = 1.0 + reference.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    generated
+        .iter()
+        .zip(reference)
+        .fold(0.0_f64, |m, (g, r)| m.max((g - r).abs()))
+        / scale
 }
