@@ -21,8 +21,15 @@ mechanism! {
 
 type Step<M> = fn(&State<f64, M>, &Inputs<f64, M>, f64) -> State<f64, M>;
 
-/// Runs `steps` steps and returns the largest |E − E0| seen (every 100 steps).
-fn energy_drift<M: Energy<f64>>(start: State<f64, M>, step: Step<M>, dt: f64, steps: usize) -> f64 {
+/// Runs `steps` unforced steps from `start` and hands `observe` each step's index and
+/// |E − E₀| (the total energy against the start's).
+fn unforced_energy_errors<M: Energy<f64>>(
+    start: State<f64, M>,
+    step: Step<M>,
+    dt: f64,
+    steps: usize,
+    mut observe: impl FnMut(usize, f64),
+) {
     let tau = M::zero_velocity();
     let (p, loads) = (M::nominal_parameters(), M::zero_loads());
     let inputs = Inputs::<f64, M> {
@@ -32,13 +39,20 @@ fn energy_drift<M: Energy<f64>>(start: State<f64, M>, step: Step<M>, dt: f64, st
     };
     let e0 = M::total_energy(&start.q, &start.v, &p);
     let mut s = start;
-    let mut worst = 0.0_f64;
     for k in 0..steps {
         s = step(&s, &inputs, dt);
-        if k % 100 == 0 {
-            worst = worst.max((M::total_energy(&s.q, &s.v, &p) - e0).abs());
-        }
+        observe(k, (M::total_energy(&s.q, &s.v, &p) - e0).abs());
     }
+}
+
+/// Runs `steps` steps and returns the largest |E − E0| seen (every 100 steps).
+fn energy_drift<M: Energy<f64>>(start: State<f64, M>, step: Step<M>, dt: f64, steps: usize) -> f64 {
+    let mut worst = 0.0_f64;
+    unforced_energy_errors(start, step, dt, steps, |k, error| {
+        if k % 100 == 0 {
+            worst = worst.max(error);
+        }
+    });
     worst
 }
 
@@ -51,19 +65,13 @@ fn double_pendulum_a_million_steps_midpoint_bounded_explicit_grows() {
         v: [0.0, 0.0],
     };
     let dt = 1e-3;
-    let (tau, p, loads) = ([0.0; 2], [0.0; 0], [0.0; 0]);
-    let inputs = Inputs::<f64, DoublePendulum> {
-        tau: &tau,
-        parameters: &p,
-        loads: &loads,
+    let implicit_midpoint: Step<DoublePendulum> = |s, inputs, dt| {
+        integrators::implicit_midpoint(s, inputs, dt, 1e-13, 20).expect("converges")
     };
-    let e0 = DoublePendulum::total_energy(&start.q, &start.v, &p);
-    let mut s = start;
     let mut midpoint = 0.0_f64;
-    for _ in 0..1_000_000 {
-        s = integrators::implicit_midpoint(&s, &inputs, dt, 1e-13, 20).expect("converges");
-        midpoint = midpoint.max((DoublePendulum::total_energy(&s.q, &s.v, &p) - e0).abs());
-    }
+    unforced_energy_errors(start, implicit_midpoint, dt, 1_000_000, |_, error| {
+        midpoint = midpoint.max(error);
+    });
     let semi_implicit = energy_drift(start, integrators::semi_implicit_euler, dt, 1_000_000);
     let explicit = energy_drift(start, integrators::explicit_euler, dt, 100_000);
     let rk4 = energy_drift(start, integrators::rk4, dt, 100_000);
@@ -72,11 +80,12 @@ fn double_pendulum_a_million_steps_midpoint_bounded_explicit_grows() {
          explicit Euler {explicit:.2e} J, RK4 {rk4:.2e} J (10⁵ steps)"
     );
     // The implicit midpoint rule keeps the energy error small over the whole run, but it
-    // is not symplectic in (q, q̇) for this configuration-dependent M: measured here, its
-    // error grows from 3.4e-4 J (first tenth) to 1.08e-3 J (last tenth); the variational
-    // scheme is the one without drift (its test below). The bound has margin over that
-    // measurement (it was 1e-3 J against 4.3e-4 J before the base-parameter regrouping
-    // changed the rounding, and with it this chaotic trajectory).
+    // is not symplectic in (q, q̇) for this configuration-dependent M: its error grew from
+    // 3.4e-4 J (first tenth) to 1.08e-3 J (last tenth) in one measurement; the variational
+    // scheme is the one without drift (its test below). Each change of rounding changes
+    // this chaotic trajectory: the largest error was 4.3e-4 J before the base-parameter
+    // regrouping, 1.08e-3 J after it, 8.7e-4 J with the batched sines and cosines. The
+    // bound has margin over all three.
     assert!(midpoint < 2e-3, "implicit midpoint drifted {midpoint} J");
     // Explicit Euler gains energy steadily (17 to 22 J in a tenth of the steps, depending on
     // the last bit of the trigonometry, which this chaotic trajectory amplifies): it fails.
@@ -235,25 +244,15 @@ fn energy_error_first_and_last_tenth<M: Energy<f64>>(
     dt: f64,
     steps: usize,
 ) -> (f64, f64) {
-    let tau = M::zero_velocity();
-    let (p, loads) = (M::nominal_parameters(), M::zero_loads());
-    let inputs = Inputs::<f64, M> {
-        tau: &tau,
-        parameters: &p,
-        loads: &loads,
-    };
-    let e0 = M::total_energy(&start.q, &start.v, &p);
-    let (mut s, mut first, mut last) = (start, 0.0_f64, 0.0_f64);
-    for k in 0..steps {
-        s = step(&s, &inputs, dt);
-        let error = (M::total_energy(&s.q, &s.v, &p) - e0).abs();
+    let (mut first, mut last) = (0.0_f64, 0.0_f64);
+    unforced_energy_errors(start, step, dt, steps, |k, error| {
         if k < steps / 10 {
             first = first.max(error);
         } else if k >= steps - steps / 10 {
             last = last.max(error);
         }
         assert!(error.is_finite(), "non-finite energy at step {k}");
-    }
+    });
     (first, last)
 }
 
