@@ -27,11 +27,10 @@ pub fn regroup(
     inertias: &[BodyInertia],
     build: impl Fn(&[BodyInertia]) -> Vec<Node>,
 ) -> Vec<BodyInertia> {
-    let declared = arithmetic_cost(g, &build(inertias));
-    if declared.0 * model.bodies.len() > SEARCH_BUDGET {
+    let start = build(inertias);
+    if arithmetic_cost(g, &start).0 * model.bodies.len() > SEARCH_BUDGET {
         return super::rnea::base_parameters(g, model, transforms, inertias);
     }
-    let start = build(inertias);
     greedy(
         g,
         model,
