@@ -107,6 +107,19 @@ impl Output {
         nodes
     }
 
+    /// The same output with each node [`Graph::settled`]: a sign left on an output by the
+    /// builders' orientation rule is folded into its last operation.
+    #[must_use]
+    pub fn settled(&self, graph: &Graph) -> Output {
+        let settle = |nodes: &[Node]| nodes.iter().map(|&n| graph.settled(n)).collect();
+        match self {
+            Output::Scalar(n) => Output::Scalar(graph.settled(*n)),
+            Output::Vector(v) => Output::Vector(settle(v)),
+            Output::Matrix(rows) => Output::Matrix(rows.iter().map(|r| settle(r)).collect()),
+            Output::Tuple(items) => Output::Tuple(items.iter().map(|o| o.settled(graph)).collect()),
+        }
+    }
+
     fn collect_nodes(&self, nodes: &mut Vec<Node>) {
         match self {
             Output::Scalar(n) => nodes.push(*n),

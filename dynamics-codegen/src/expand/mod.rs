@@ -97,6 +97,7 @@ impl Signature<'_> {
         arrays: &[Array],
         output: Output,
     ) -> Function {
+        let output = output.settled(&graph);
         let mut spec =
             FunctionSpec::new(name, self.scalar_trait.clone(), self.args(arrays), output);
         spec.doc = doc;

@@ -6,8 +6,16 @@
 //! so the same rule that turns `x·(−y)` into `−(x·y)` also turns `x·(−0.5)` into
 //! `−(x·0.5)`, and `x + (−3)` into `x − 3`.
 //!
+//! Subtractions are kept in one orientation, `a − b` with `a` the older node (smaller id);
+//! `b − a` is built as `−(a − b)`. The sign then travels outwards through products and is
+//! absorbed by the first sum or difference that takes it (`x + (−y) = x − y`), so a
+//! difference and its opposite, which the Newton–Euler terms produce in pairs (a cross
+//! product and its transpose), cost one operation, not two. A sign that reaches an output
+//! is settled there by [`Graph::settled`].
+//!
 //! All negation rules are exact in IEEE arithmetic (round-to-nearest is symmetric under a
-//! change of sign), except `−(a − b) = b − a`, which gives `+0` instead of `−0` when a = b.
+//! change of sign), except in the sign of a zero result: `−(a − b)` is `−0` where `b − a`
+//! would be `+0`.
 
 use super::{Array, Const, Graph, InputRef, Node, Op};
 
@@ -92,6 +100,8 @@ impl Graph {
     ///    produce from finite inputs).
     /// 3. (−a) − (−b) = b − a; a − (−b) = a + b; (−a) − b = −(a + b) (exact). With
     ///    negative constants: x − (−3) = x + 3, (−3) − x = −(3 + x).
+    /// 4. Orientation: a − b with a older than b is a node; b − a is −(a − b) (see the
+    ///    module documentation; the sign of a zero result may differ).
     pub fn sub(&self, a: Node, b: Node) -> Node {
         if let Some((x, y)) = self.both_const(a, b) {
             return self.constant(x - y);
@@ -109,7 +119,8 @@ impl Graph {
             (Some(x), Some(y)) => self.sub(y, x),
             (None, Some(y)) => self.add(a, y),
             (Some(x), None) => self.neg(self.add(x, b)),
-            (None, None) => self.intern(Op::Sub(a, b)),
+            (None, None) if a < b => self.intern(Op::Sub(a, b)),
+            (None, None) => self.neg(self.intern(Op::Sub(b, a))),
         }
     }
 
@@ -177,14 +188,33 @@ impl Graph {
 
     /// `−a`.
     ///
-    /// Rules: −c folds; −(−x) = x (exact); −(a − b) = b − a (saves an operation; gives +0
-    /// instead of −0 when a = b).
+    /// Rules: −c folds; −(−x) = x (exact). A negated difference stays −(a − b) (see
+    /// [`Graph::sub`]'s orientation rule); [`Graph::settled`] turns it into b − a where it
+    /// is an output.
     pub fn neg(&self, a: Node) -> Node {
         match self.op(a) {
             Op::Const(c) => self.constant(-c.value()),
             Op::Neg(x) => x,
-            Op::Sub(x, y) => self.sub(y, x),
             _ => self.intern(Op::Neg(a)),
+        }
+    }
+
+    /// `node` computed without a trailing negation where one costs nothing: −(a − b) as
+    /// b − a and −(c·x) as (−c)·x for a constant c; any other node as it is. For outputs
+    /// only, after the graph is built: the nodes it makes are outside the canonical forms
+    /// the builders produce, so the builders never reuse them.
+    pub fn settled(&self, node: Node) -> Node {
+        let Op::Neg(x) = self.op(node) else {
+            return node;
+        };
+        match self.op(x) {
+            Op::Sub(a, b) => self.intern(Op::Sub(b, a)),
+            Op::Mul(a, b) => match (self.constant_value(a), self.constant_value(b)) {
+                (Some(c), _) => self.intern(Op::Mul(self.constant(-c), b)),
+                (None, Some(c)) => self.intern(Op::Mul(a, self.constant(-c))),
+                (None, None) => node,
+            },
+            _ => node,
         }
     }
 
@@ -351,14 +381,29 @@ mod tests {
         assert_eq!(g.mul(na, nb), ab);
         // a + (−b) = a − b; (−a) + b = b − a; (−a) + (−b) = −(a + b)
         assert_eq!(g.op(g.add(a, nb)), Op::Sub(a, b));
-        assert_eq!(g.op(g.add(na, b)), Op::Sub(b, a));
+        assert_eq!(g.add(na, b), g.sub(b, a));
         assert_eq!(g.op(g.add(na, nb)), Op::Neg(g.add(a, b)));
         // a − (−b) = a + b; (−a) − b = −(a + b); (−a) − (−b) = b − a
         assert_eq!(g.sub(a, nb), g.add(a, b));
         assert_eq!(g.op(g.sub(na, b)), Op::Neg(g.add(a, b)));
-        assert_eq!(g.op(g.sub(na, nb)), Op::Sub(b, a));
-        // −(a − b) = b − a
+        assert_eq!(g.sub(na, nb), g.neg(g.sub(a, b)));
+        // b − a is −(a − b): one subtraction serves both orientations
+        assert_eq!(g.op(g.sub(b, a)), Op::Neg(g.sub(a, b)));
         assert_eq!(g.neg(g.sub(a, b)), g.sub(b, a));
+        assert_eq!(g.add(g.sub(b, a), g.sub(a, b)), g.zero());
+        // settling an output folds the sign into its last operation
+        let ba = g.sub(b, a);
+        assert_eq!(g.op(g.settled(ba)), Op::Sub(b, a));
+        assert_eq!(
+            g.op(g.settled(g.mul(a, g.constant(-0.5)))),
+            Op::Mul(a, g.constant(-0.5))
+        );
+        assert_eq!(
+            g.settled(g.neg(ab)),
+            g.neg(ab),
+            "no constant factor: stays negated"
+        );
+        assert_eq!(g.settled(ab), ab);
         // (−a)/b = a/(−b) = −(a/b); (−a)/(−b) = a/b
         let q = g.div(a, b);
         assert_eq!(g.op(g.div(na, b)), Op::Neg(q));
