@@ -107,16 +107,35 @@ impl Output {
         nodes
     }
 
-    /// The same output with each node [`Graph::settled`]: a sign left on an output by the
-    /// builders' orientation rule is folded into its last operation.
+    /// The same output with a sign left on an output by the builders' orientation rule
+    /// folded into the operation under it ([`Graph::settled`]), where nothing else uses
+    /// that operation: a shared product or difference keeps its negation (one sign flip)
+    /// rather than being computed a second time.
     #[must_use]
     pub fn settled(&self, graph: &Graph) -> Output {
-        let settle = |nodes: &[Node]| nodes.iter().map(|&n| graph.settled(n)).collect();
+        let nodes = self.nodes();
+        let mut uses = vec![0_u32; graph.len()];
+        for n in graph.live(&nodes).nodes() {
+            for c in graph.op(n).children() {
+                uses[c.index()] += 1;
+            }
+        }
+        for n in &nodes {
+            uses[n.index()] += 1;
+        }
+        self.map(&|n| match graph.op(n) {
+            Op::Neg(x) if uses[x.index()] == 1 => graph.settled(n),
+            _ => n,
+        })
+    }
+
+    fn map(&self, f: &impl Fn(Node) -> Node) -> Output {
+        let row = |nodes: &[Node]| nodes.iter().map(|&n| f(n)).collect();
         match self {
-            Output::Scalar(n) => Output::Scalar(graph.settled(*n)),
-            Output::Vector(v) => Output::Vector(settle(v)),
-            Output::Matrix(rows) => Output::Matrix(rows.iter().map(|r| settle(r)).collect()),
-            Output::Tuple(items) => Output::Tuple(items.iter().map(|o| o.settled(graph)).collect()),
+            Output::Scalar(n) => Output::Scalar(f(*n)),
+            Output::Vector(v) => Output::Vector(row(v)),
+            Output::Matrix(rows) => Output::Matrix(rows.iter().map(|r| row(r)).collect()),
+            Output::Tuple(items) => Output::Tuple(items.iter().map(|o| o.map(f)).collect()),
         }
     }
 
@@ -759,6 +778,34 @@ mod tests {
     }
 
     /// Pendulum-like: τ = m·l²·a + m·g·l·sin q, plus cos q·v as a second output.
+    /// A sign on an output folds into the operation under it when nothing else uses that
+    /// operation, and stays a negation when something does (no product computed twice).
+    #[test]
+    fn output_signs_fold_only_into_unshared_operations() {
+        use crate::sym::Op;
+        let g = Graph::new();
+        let (x, y) = (g.input(Array::Q, 0), g.input(Array::Q, 1));
+        let half = g.constant(0.5);
+        let alone = g.neg(g.mul(x, half)); // −(x·0.5), the product used only here
+        let shared = g.mul(y, half);
+        let difference = g.sub(y, x); // −(x − y) in the graph's orientation
+        let out = Output::Vector(vec![alone, g.neg(shared), shared, difference]);
+        let Output::Vector(settled) = out.settled(&g) else {
+            unreachable!("a vector stays a vector")
+        };
+        assert_eq!(g.op(settled[0]), Op::Mul(x, g.constant(-0.5)));
+        assert_eq!(
+            g.op(settled[1]),
+            Op::Neg(shared),
+            "the shared product is not redone"
+        );
+        assert_eq!(settled[2], shared);
+        assert_eq!(g.op(settled[3]), Op::Sub(y, x));
+        let before = g.eval(|r| [0.3, -1.7][r.index as usize], &out.nodes());
+        let after = g.eval(|r| [0.3, -1.7][r.index as usize], &settled);
+        assert_eq!(before, after);
+    }
+
     #[test]
     fn golden_tiny_function() {
         let g = Graph::new();
