@@ -32,6 +32,11 @@
 //!   than its turn) and `_` for a value no one reads. For `f64` the runtime evaluates the
 //!   angles in pairs with SIMD; a scalar type without such a routine gets one `sin_cos`
 //!   each.
+//! - A product that only one sum or difference uses is written into it:
+//!   `let vN = T::mul_add(vA, vB, vC);` for `vA·vB + vC` (with `-vA` or `-vC` for the two
+//!   differences). `Scalar::mul_add` is `a·b + c` with two roundings, bit for bit the
+//!   separate operations, unless the build targets a CPU with fused multiply-add
+//!   (`-C target-cpu=native`), where it is one instruction and one rounding.
 //! - An argument the function does not read is named with a leading underscore.
 //! - No allocation, no branch, no panic.
 //!
@@ -249,7 +254,8 @@ pub fn emit_function(graph: &Graph, spec: &FunctionSpec) -> TokenStream {
     let ops = graph.ops();
     check_inputs(&ops, &live, &spec.args);
 
-    let plan = Plan::new(&ops, &live, &outputs, spec.split_threshold);
+    let fused = fusions(&ops, &live, &outputs);
+    let plan = Plan::new(&ops, &live, &outputs, &fused, spec.split_threshold);
     let trait_ = &spec.scalar_trait;
     let name = &spec.name;
     let vis = &spec.vis;
@@ -379,11 +385,19 @@ struct Piece {
 /// The schedule of the whole function: steps in order, cut into pieces.
 struct Plan {
     pieces: Vec<Piece>,
+    /// The sums and differences that take a product in ([`fusions`]).
+    fused: HashMap<Node, Fused>,
 }
 
 impl Plan {
-    fn new(ops: &[Op], live: &LiveSet, outputs: &[Node], threshold: usize) -> Self {
-        let steps = schedule(ops, live);
+    fn new(
+        ops: &[Op],
+        live: &LiveSet,
+        outputs: &[Node],
+        fused: &HashMap<Node, Fused>,
+        threshold: usize,
+    ) -> Self {
+        let steps = schedule(ops, live, fused);
         let n_pieces = live.count().div_ceil(threshold.max(1)).max(1);
         let per_piece = steps.len().div_ceil(n_pieces).max(1);
         let mut pieces: Vec<Piece> = steps
@@ -405,7 +419,10 @@ impl Plan {
             for step in &piece.steps {
                 defined_in.extend(step.defines().into_iter().map(|n| (n, p)));
                 let operands: Vec<Node> = match step {
-                    Step::One(n) => ops[n.index()].children().collect(),
+                    Step::One(n) => match fused.get(n) {
+                        Some(f) => vec![f.x, f.y, f.c],
+                        None => ops[n.index()].children().collect(),
+                    },
                     Step::SinCos { arg, .. } => vec![*arg],
                     Step::Batch(angles) => {
                         // Read in place, not through a `let` of the leaf: only the array.
@@ -454,7 +471,10 @@ impl Plan {
             carry.sort_unstable();
             piece.carry_in = carry;
         }
-        Plan { pieces }
+        Plan {
+            pieces,
+            fused: fused.clone(),
+        }
     }
 
     /// The statements of piece `p` and its result: the next piece's carry, or `output`.
@@ -471,7 +491,12 @@ impl Plan {
             .iter()
             .map(|&n| (n, let_node(n, ops[n.index()])))
             .collect();
-        items.extend(piece.steps.iter().map(|s| (s.first(), let_step(s, ops))));
+        items.extend(
+            piece
+                .steps
+                .iter()
+                .map(|s| (s.first(), let_step(s, ops, &self.fused))),
+        );
         items.sort_by_key(|(n, _)| *n);
         stmts.extend(items.into_iter().map(|(_, stmt)| stmt));
 
@@ -543,7 +568,8 @@ impl Plan {
 /// The live non-leaf nodes as statements, in order: the sines and cosines of two or more
 /// inputs merged into one [`Step::Batch`] at the first of them, other `sin x`/`cos x` pairs
 /// into one `sin_cos` step at the first of the two.
-fn schedule(ops: &[Op], live: &LiveSet) -> Vec<Step> {
+fn schedule(ops: &[Op], live: &LiveSet, fused: &HashMap<Node, Fused>) -> Vec<Step> {
+    let folded: BTreeSet<Node> = fused.values().map(|f| f.product).collect();
     let mut sin_of = HashMap::new();
     let mut cos_of = HashMap::new();
     for node in live.nodes() {
@@ -601,11 +627,70 @@ fn schedule(ops: &[Op], live: &LiveSet) -> Vec<Step> {
                 steps.push(Step::SinCos { sin, cos, arg });
             }
             Some(_) => {} // the second of a pair, computed with the first
-            None if !op.is_leaf() => steps.push(Step::One(node)),
+            None if !op.is_leaf() && !folded.contains(&node) => steps.push(Step::One(node)),
             None => {}
         }
     }
     steps
+}
+
+/// A sum or difference with a product folded in: ±x·y ± c as `T::mul_add(±x, y, ±c)`.
+#[derive(Clone, Copy, Debug)]
+struct Fused {
+    /// The product's node, no longer computed on its own.
+    product: Node,
+    x: Node,
+    y: Node,
+    c: Node,
+    negate_product: bool,
+    negate_addend: bool,
+}
+
+/// The sums and differences that take in a product nothing else uses: `a·b + c`,
+/// `a·b − c` and `c − a·b` become `T::mul_add(a, b, c)`, `T::mul_add(a, b, −c)` and
+/// `T::mul_add(−a, b, c)`. Without fused multiply-add hardware `mul_add` is `a·b + c`, the
+/// same two roundings as before (x + (−y) and x − y are the same IEEE operation); built for
+/// a CPU with FMA (`-C target-cpu=native`) it is one instruction and one rounding.
+fn fusions(ops: &[Op], live: &LiveSet, outputs: &[Node]) -> HashMap<Node, Fused> {
+    let mut uses = vec![0_u32; ops.len()];
+    for n in live.nodes() {
+        for c in ops[n.index()].children() {
+            uses[c.index()] += 1;
+        }
+    }
+    for n in outputs {
+        uses[n.index()] += 1;
+    }
+    let product = |n: Node| match ops[n.index()] {
+        Op::Mul(x, y) if uses[n.index()] == 1 => Some((n, x, y)),
+        _ => None,
+    };
+    let mut fused = HashMap::new();
+    for n in live.nodes() {
+        let f = match ops[n.index()] {
+            Op::Add(a, b) => product(a)
+                .map(|p| (p, b, false, false))
+                .or_else(|| product(b).map(|p| (p, a, false, false))),
+            Op::Sub(a, b) => product(a)
+                .map(|p| (p, b, false, true))
+                .or_else(|| product(b).map(|p| (p, a, true, false))),
+            _ => None,
+        };
+        if let Some(((product, x, y), c, negate_product, negate_addend)) = f {
+            fused.insert(
+                n,
+                Fused {
+                    product,
+                    x,
+                    y,
+                    c,
+                    negate_product,
+                    negate_addend,
+                },
+            );
+        }
+    }
+    fused
 }
 
 /// `let vN = …;` for a single node.
@@ -633,9 +718,26 @@ fn let_node(node: Node, op: Op) -> TokenStream {
 }
 
 /// The statement of a step.
-fn let_step(step: &Step, ops: &[Op]) -> TokenStream {
+fn let_step(step: &Step, ops: &[Op], fused: &HashMap<Node, Fused>) -> TokenStream {
     match step {
-        Step::One(n) => let_node(*n, ops[n.index()]),
+        Step::One(n) => match fused.get(n) {
+            Some(f) => {
+                let v = var(*n);
+                let (x, y, c) = (var(f.x), var(f.y), var(f.c));
+                let x = if f.negate_product {
+                    quote!(-#x)
+                } else {
+                    quote!(#x)
+                };
+                let c = if f.negate_addend {
+                    quote!(-#c)
+                } else {
+                    quote!(#c)
+                };
+                quote!(let #v = T::mul_add(#x, #y, #c);)
+            }
+            None => let_node(*n, ops[n.index()]),
+        },
         Step::SinCos { sin, cos, arg } => {
             let (s, c, x) = (var(*sin), var(*cos), var(*arg));
             quote!(let (#s, #c) = T::sin_cos(#x);)
@@ -778,6 +880,40 @@ mod tests {
     }
 
     /// Pendulum-like: τ = m·l²·a + m·g·l·sin q, plus cos q·v as a second output.
+    /// A product that one sum or difference alone uses is folded into it, in each of the
+    /// three forms; a product used twice is computed once and not folded.
+    #[test]
+    fn products_fold_into_their_only_sum() {
+        let g = Graph::new();
+        let (x, y, c) = (
+            g.input(Array::Q, 0),
+            g.input(Array::Q, 1),
+            g.input(Array::Q, 2),
+        );
+        let (p1, p2, p3) = (g.mul(x, y), g.mul(x, c), g.mul(y, c));
+        let shared = g.mul(c, c);
+        let outputs = vec![
+            g.add(p1, c),     // x·y + c
+            g.sub(p2, y),     // x·c − y
+            g.sub(x, p3),     // x − y·c
+            g.add(shared, x), // c·c + x, but c·c is an output too
+            shared,
+        ];
+        // settled as the expansion's functions are (x·c − y is built as −(y − x·c))
+        let output = Output::Vector(outputs).settled(&g);
+        let spec = spec("f", &[(Array::Q, 3)], output);
+        let text = pretty(emit_function(&g, &spec));
+        for line in [
+            "T::mul_add(v0, v1, v2)",
+            "T::mul_add(v0, v2, -v1)",
+            "T::mul_add(-v1, v2, v0)",
+        ] {
+            assert!(text.contains(line), "{line} missing in\n{text}");
+        }
+        assert_eq!(text.matches("T::mul_add").count(), 3, "{text}");
+        assert!(text.contains("v2 * v2"), "{text}");
+    }
+
     /// A sign on an output folds into the operation under it when nothing else uses that
     /// operation, and stays a negation when something does (no product computed twice).
     #[test]
@@ -845,10 +981,9 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
     let v2 = a[0];
     let (v3, v4) = T::sin_cos(v0);
     let v5 = T::from_f64(0.5_f64);
-    let v6 = v2 * v5;
     let v8 = T::from_f64(9.81_f64);
     let v9 = v3 * v8;
-    let v11 = v6 - v9;
+    let v11 = T::mul_add(v2, v5, -v9);
     let v12 = v1 * v4;
     let v13 = T::from_f64(0.1_f64);
     [v11, v12, v0, v13]
@@ -1090,6 +1225,9 @@ mod rt {
                 (sin[i], cos[i]) = x[i].sin_cos();
             }
             (sin, cos)
+        }
+        fn mul_add(self, a: Self, b: Self) -> Self {
+            self * a + b
         }
     }
     impl Scalar for f64 {

@@ -54,6 +54,16 @@ pub trait Scalar:
         }
         (sin, cos)
     }
+    /// `self · a + b`. The generated code writes every product that only one sum or
+    /// difference uses this way. The default, and `f32`/`f64` built without FMA (baseline
+    /// x86-64), compute `self * a + b`: two roundings, bit for bit the separate operations.
+    /// `f32`/`f64` built for a CPU with fused multiply-add (`-C target-cpu=native`, or
+    /// `-C target-feature=+fma`) use it: one instruction, one rounding.
+    #[inline(always)]
+    #[must_use]
+    fn mul_add(self, a: Self, b: Self) -> Self {
+        self * a + b
+    }
 }
 
 /// A [`Scalar`] that the run-time solvers (Newton's method, pivoting) can test and report:
@@ -114,6 +124,14 @@ macro_rules! impl_float_scalar {
             fn sin_cos(self) -> (Self, Self) {
                 <$t>::sin_cos(self)
             }
+            #[inline(always)]
+            fn mul_add(self, a: Self, b: Self) -> Self {
+                if cfg!(target_feature = "fma") {
+                    <$t>::mul_add(self, a, b)
+                } else {
+                    self * a + b
+                }
+            }
             $($($extra)*)?
         }
     };
@@ -130,6 +148,27 @@ impl_float_scalar!(f64, {
 #[cfg(test)]
 mod tests {
     use super::Scalar;
+
+    /// 0.1 · 10 − 1 is 0 with two roundings and 5.55e-17 with one: `mul_add` fuses only
+    /// when the build targets FMA hardware.
+    #[test]
+    fn mul_add_fuses_only_when_built_for_fma() {
+        let (a, b, c) = (0.1_f64, 10.0, -1.0);
+        assert_ne!(
+            f64::mul_add(a, b, c),
+            a * b + c,
+            "the case tells the two apart"
+        );
+        let expected = if cfg!(target_feature = "fma") {
+            f64::mul_add(a, b, c)
+        } else {
+            a * b + c
+        };
+        assert_eq!(
+            <f64 as Scalar>::mul_add(a, b, c).to_bits(),
+            expected.to_bits()
+        );
+    }
 
     #[test]
     fn f32_rounds_to_nearest() {
