@@ -119,15 +119,7 @@ impl Output {
     #[must_use]
     pub fn settled(&self, graph: &Graph) -> Output {
         let nodes = self.nodes();
-        let mut uses = vec![0_u32; graph.len()];
-        for n in graph.live(&nodes).nodes() {
-            for c in graph.op(n).children() {
-                uses[c.index()] += 1;
-            }
-        }
-        for n in &nodes {
-            uses[n.index()] += 1;
-        }
+        let uses = use_counts(&graph.ops(), &graph.live(&nodes), &nodes);
         self.map(&|n| match graph.op(n) {
             Op::Neg(x) if uses[x.index()] == 1 => graph.settled(n),
             _ => n,
@@ -255,7 +247,7 @@ pub fn emit_function(graph: &Graph, spec: &FunctionSpec) -> TokenStream {
     check_inputs(&ops, &live, &spec.args);
 
     let fused = fusions(&ops, &live, &outputs);
-    let plan = Plan::new(&ops, &live, &outputs, &fused, spec.split_threshold);
+    let plan = Plan::new(&ops, &live, &outputs, fused, spec.split_threshold);
     let trait_ = &spec.scalar_trait;
     let name = &spec.name;
     let vis = &spec.vis;
@@ -394,10 +386,10 @@ impl Plan {
         ops: &[Op],
         live: &LiveSet,
         outputs: &[Node],
-        fused: &HashMap<Node, Fused>,
+        fused: HashMap<Node, Fused>,
         threshold: usize,
     ) -> Self {
-        let steps = schedule(ops, live, fused);
+        let steps = schedule(ops, live, &fused);
         let n_pieces = live.count().div_ceil(threshold.max(1)).max(1);
         let per_piece = steps.len().div_ceil(n_pieces).max(1);
         let mut pieces: Vec<Piece> = steps
@@ -471,10 +463,7 @@ impl Plan {
             carry.sort_unstable();
             piece.carry_in = carry;
         }
-        Plan {
-            pieces,
-            fused: fused.clone(),
-        }
+        Plan { pieces, fused }
     }
 
     /// The statements of piece `p` and its result: the next piece's carry, or `output`.
@@ -634,6 +623,20 @@ fn schedule(ops: &[Op], live: &LiveSet, fused: &HashMap<Node, Fused>) -> Vec<Ste
     steps
 }
 
+/// How many times each node is read: as an operand of a live node, or as an output.
+fn use_counts(ops: &[Op], live: &LiveSet, outputs: &[Node]) -> Vec<u32> {
+    let mut uses = vec![0_u32; ops.len()];
+    for n in live.nodes() {
+        for c in ops[n.index()].children() {
+            uses[c.index()] += 1;
+        }
+    }
+    for n in outputs {
+        uses[n.index()] += 1;
+    }
+    uses
+}
+
 /// A sum or difference with a product folded in: ±x·y ± c as `T::mul_add(±x, y, ±c)`.
 #[derive(Clone, Copy, Debug)]
 struct Fused {
@@ -652,15 +655,7 @@ struct Fused {
 /// same two roundings as before (x + (−y) and x − y are the same IEEE operation); built for
 /// a CPU with FMA (`-C target-cpu=native`) it is one instruction and one rounding.
 fn fusions(ops: &[Op], live: &LiveSet, outputs: &[Node]) -> HashMap<Node, Fused> {
-    let mut uses = vec![0_u32; ops.len()];
-    for n in live.nodes() {
-        for c in ops[n.index()].children() {
-            uses[c.index()] += 1;
-        }
-    }
-    for n in outputs {
-        uses[n.index()] += 1;
-    }
+    let uses = use_counts(ops, live, outputs);
     let product = |n: Node| match ops[n.index()] {
         Op::Mul(x, y) if uses[n.index()] == 1 => Some((n, x, y)),
         _ => None,
@@ -879,7 +874,6 @@ mod tests {
         FunctionSpec::new(name, syn::parse_quote!(Scalar), args, output)
     }
 
-    /// Pendulum-like: τ = m·l²·a + m·g·l·sin q, plus cos q·v as a second output.
     /// A product that one sum or difference alone uses is folded into it, in each of the
     /// three forms; a product used twice is computed once and not folded.
     #[test]
@@ -942,6 +936,7 @@ mod tests {
         assert_eq!(before, after);
     }
 
+    /// Pendulum-like: τ = m·l²·a + m·g·l·sin q, plus cos q·v as a second output.
     #[test]
     fn golden_tiny_function() {
         let g = Graph::new();

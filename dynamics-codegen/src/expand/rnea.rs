@@ -26,11 +26,11 @@
 //! with I_P α + ω × (I_P ω) from the Euler form of the seed (ω × (I_P ω) has first
 //! component (I_33 − I_22) ω_2 ω_3 + I_23 (ω_2² − ω_3²) + I_13 ω_1 ω_2 − I_12 ω_1 ω_3)
 //! gathered by inertia entry ([`euler_moment`]: e.g. I_12 (α_2 − ω_1 ω_3), a sum U
-//! already holds), whose constant differences fold at compile time. The applied loads on the body are subtracted. Backward
-//! sweep: the wrench the joint transmits, f_i = (F, M_P)_i + Σ_children
-//! (E_c F_c, E_c M_c + r_c × E_c F_c), and τ_i = s_iᵀ f_i (the moment for a revolute joint,
-//! the force for a prismatic one, the whole wrench for a free joint), plus armature · q̈ and
-//! damping · q̇.
+//! already holds), whose constant differences fold at compile time. The applied loads on
+//! the body are subtracted. Backward sweep: the wrench the joint transmits,
+//! f_i = (F, M_P)_i + Σ_children (E_c F_c, E_c M_c + r_c × E_c F_c), and τ_i = s_iᵀ f_i (the
+//! moment for a revolute joint, the force for a prismatic one, the whole wrench for a free
+//! joint), plus armature · q̈ and damping · q̇.
 //!
 //! τ itself is computed over base inertial parameters (Khalil and Kleinfinger's regrouping,
 //! done at compile time on numbers): the share of a body that its joint's motion leaves
