@@ -126,6 +126,16 @@ impl Output {
         })
     }
 
+    /// The same output in a new graph whose sums add their earliest-ready terms first
+    /// ([`Graph::regrouped`]).
+    #[must_use]
+    pub fn regrouped(&self, graph: &Graph) -> (Graph, Output) {
+        let old = self.nodes();
+        let (graph, new) = graph.regrouped(&old);
+        let map: HashMap<Node, Node> = old.into_iter().zip(new).collect();
+        (graph, self.map(&|n| map[&n]))
+    }
+
     fn map(&self, f: &impl Fn(Node) -> Node) -> Output {
         let row = |nodes: &[Node]| nodes.iter().map(|&n| f(n)).collect();
         match self {

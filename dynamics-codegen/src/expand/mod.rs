@@ -97,6 +97,7 @@ impl Signature<'_> {
         arrays: &[Array],
         output: Output,
     ) -> Function {
+        let (graph, output) = output.regrouped(&graph);
         let output = output.settled(&graph);
         let mut spec =
             FunctionSpec::new(name, self.scalar_trait.clone(), self.args(arrays), output);

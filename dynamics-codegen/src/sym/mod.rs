@@ -20,8 +20,11 @@
 //! - **Canonical order**: the operands of `+` and `·` are ordered by id, so `a+b` and
 //!   `b+a` are one node.
 //!
-//! What the graph does not do: reassociate (`(x·2)·3` stays two products), distribute, or
-//! anything else that would change the rounding of the textbook's evaluation order. The only
+//! What the builders do not do: reassociate (`(x·2)·3` stays two products), distribute, or
+//! anything else that would change the rounding of the textbook's evaluation order. (Once a
+//! function's graph is complete, [`Graph::regrouped`] copies it with each sum's terms
+//! added earliest-ready first: the one step that changes the rounding of additions, for a
+//! shorter chain of dependent operations.) The only
 //! rules that are not bit-exact in IEEE arithmetic are documented where they live: x·0 = 0
 //! and x−x = 0 (differ when x is infinite or NaN), x+0 = x and 0−x = −x and −(a−b) = b−a
 //! (may differ in the sign of a zero result).
@@ -36,6 +39,7 @@
 
 mod analysis;
 mod derivative;
+mod latency;
 mod linalg;
 mod rules;
 

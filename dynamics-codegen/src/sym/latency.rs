@@ -1,0 +1,310 @@
+//! Sums regrouped for latency: the same terms, added earliest-ready first.
+//!
+//! The expansion writes a sum in the textbook's order, e.g. the forward sweep's
+//! α_i = Eᵀα_λ + s q̈ + (Eᵀω_λ) × s q̇ as ((c α_x − s α_y) + q̈) − q̇ ω_y: the term that waits
+//! for the parent body (α_λ) enters first, so every later addition waits for it too, and
+//! each body of the recursion adds those additions to the chain's length. A processor runs
+//! independent operations side by side, so what bounds the straight-line code is that
+//! chain: a sum of terms t_k, ready at times r_k, is ready soonest when the two
+//! earliest-ready terms are added first and their sum goes back among the rest (Huffman's
+//! rule with max(r_a, r_b) + latency in place of r_a + r_b; it gives the least depth for
+//! an associative operation).
+//!
+//! [`Graph::regrouped`] rebuilds every maximal sum — a tree of `+`, `−` and sign flips
+//! whose inner nodes nothing else uses — from its signed terms that way, with ready times
+//! estimated from the latencies below. Shared partial sums stay as they are (they are
+//! leaves), so no common subexpression is lost, and the number of operations does not
+//! grow: n terms still take n − 1 additions or subtractions, and a sign flip is needed only
+//! when every term is negative (the tree had one then). The result differs from the
+//! textbook's order only by the rounding of the additions (an error bound of the same
+//! size, not the same bits), which is why it is the last step before emission and why the
+//! builders themselves never reassociate.
+
+use super::{Graph, Node, Op};
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+/// Estimated latencies in cycles (a current x86-64 core; only their ratios matter): an
+/// addition, subtraction or product takes 4, a sign flip 1 (an `xor`), a division 14, a
+/// square root 18; a sine or cosine is taken as ready at 40 (the batched evaluation at the
+/// top of a function), inputs and constants at 0.
+fn latency(op: Op) -> u32 {
+    match op {
+        Op::Const(_) | Op::Input(_) => 0,
+        Op::Add(..) | Op::Sub(..) | Op::Mul(..) => 4,
+        Op::Neg(_) => 1,
+        Op::Div(..) => 14,
+        Op::Sqrt(_) => 18,
+        Op::Sin(_) | Op::Cos(_) => 40,
+    }
+}
+
+fn is_sum(op: Op) -> bool {
+    matches!(op, Op::Add(..) | Op::Sub(..) | Op::Neg(_))
+}
+
+/// A term of a sum: its node in the new graph, its sign, when it is ready, and its place
+/// among the sum's terms (ties go to the earlier term, so a sum of terms ready at once keeps
+/// its order).
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+struct Term {
+    ready: u32,
+    place: usize,
+    negative: bool,
+    node: Node,
+}
+
+impl Graph {
+    /// A new graph holding what `outputs` need, with every sum regrouped so that its
+    /// earliest-ready terms are added first (module documentation), and the outputs' nodes
+    /// in it. Nodes are created in the order of the old graph, so the emitted code keeps
+    /// its order.
+    #[must_use]
+    pub fn regrouped(&self, outputs: &[Node]) -> (Graph, Vec<Node>) {
+        let ops = self.ops();
+        let live = self.live(outputs);
+        let mut uses = vec![0_u32; ops.len()];
+        let mut user = vec![None; ops.len()];
+        for node in live.nodes() {
+            for child in ops[node.index()].children() {
+                uses[child.index()] += 1;
+                user[child.index()] = Some(node);
+            }
+        }
+        let mut is_output = vec![false; ops.len()];
+        for &out in outputs {
+            is_output[out.index()] = true;
+        }
+        // Inner nodes of a sum: a sum that one sum alone uses.
+        let inner: Vec<bool> = (0..ops.len())
+            .map(|i| {
+                is_sum(ops[i])
+                    && uses[i] == 1
+                    && !is_output[i]
+                    && user[i].is_some_and(|u| is_sum(ops[u.index()]))
+            })
+            .collect();
+
+        let new = Graph::new();
+        let mut map: Vec<Option<Node>> = vec![None; ops.len()];
+        let mut ready: Vec<u32> = Vec::new();
+        let intern = |op: Op, ready: &mut Vec<u32>| {
+            let node = new.intern(op);
+            if node.index() == ready.len() {
+                let start = op.children().map(|c| ready[c.index()]).max().unwrap_or(0);
+                ready.push(start + latency(op));
+            }
+            node
+        };
+        for old in live.nodes() {
+            let i = old.index();
+            if inner[i] {
+                continue;
+            }
+            let m = |n: Node| map[n.index()].expect("operands are mapped before their users");
+            let op = ops[i];
+            let node = if is_sum(op) {
+                let mut terms = Vec::new();
+                collect_terms(&ops, &inner, old, false, &mut terms, true);
+                let mut heap: BinaryHeap<Reverse<Term>> = terms
+                    .iter()
+                    .enumerate()
+                    .map(|(place, &(negative, leaf))| {
+                        let node = m(leaf);
+                        Reverse(Term {
+                            ready: ready[node.index()],
+                            place,
+                            negative,
+                            node,
+                        })
+                    })
+                    .collect();
+                let mut place = terms.len();
+                while heap.len() > 1 {
+                    let (Some(Reverse(a)), Some(Reverse(b))) = (heap.pop(), heap.pop()) else {
+                        unreachable!("the heap holds two terms")
+                    };
+                    let (op, negative) = match (a.negative, b.negative) {
+                        (false, false) => (Op::Add(a.node.min(b.node), a.node.max(b.node)), false),
+                        (true, true) => (Op::Add(a.node.min(b.node), a.node.max(b.node)), true),
+                        (false, true) => (Op::Sub(a.node, b.node), false),
+                        (true, false) => (Op::Sub(b.node, a.node), false),
+                    };
+                    let node = intern(op, &mut ready);
+                    heap.push(Reverse(Term {
+                        ready: ready[node.index()],
+                        place,
+                        negative,
+                        node,
+                    }));
+                    place += 1;
+                }
+                let Some(Reverse(last)) = heap.pop() else {
+                    unreachable!("a sum has a term")
+                };
+                if last.negative {
+                    intern(Op::Neg(last.node), &mut ready)
+                } else {
+                    last.node
+                }
+            } else {
+                let op = match op {
+                    Op::Const(_) | Op::Input(_) => op,
+                    Op::Add(a, b) => Op::Add(m(a).min(m(b)), m(a).max(m(b))),
+                    Op::Mul(a, b) => Op::Mul(m(a).min(m(b)), m(a).max(m(b))),
+                    Op::Sub(a, b) => Op::Sub(m(a), m(b)),
+                    Op::Div(a, b) => Op::Div(m(a), m(b)),
+                    Op::Neg(a) => Op::Neg(m(a)),
+                    Op::Sin(a) => Op::Sin(m(a)),
+                    Op::Cos(a) => Op::Cos(m(a)),
+                    Op::Sqrt(a) => Op::Sqrt(m(a)),
+                };
+                intern(op, &mut ready)
+            };
+            map[i] = Some(node);
+        }
+        let outputs = outputs
+            .iter()
+            .map(|o| map[o.index()].expect("outputs are live"))
+            .collect();
+        (new, outputs)
+    }
+}
+
+/// The signed terms of the sum rooted at `node`: descends through `+`, `−` and sign flips
+/// that are `inner` (and through the root itself), and stops at anything else.
+fn collect_terms(
+    ops: &[Op],
+    inner: &[bool],
+    node: Node,
+    negative: bool,
+    terms: &mut Vec<(bool, Node)>,
+    root: bool,
+) {
+    if !root && !inner[node.index()] {
+        terms.push((negative, node));
+        return;
+    }
+    match ops[node.index()] {
+        Op::Add(a, b) => {
+            collect_terms(ops, inner, a, negative, terms, false);
+            collect_terms(ops, inner, b, negative, terms, false);
+        }
+        Op::Sub(a, b) => {
+            collect_terms(ops, inner, a, negative, terms, false);
+            collect_terms(ops, inner, b, !negative, terms, false);
+        }
+        Op::Neg(a) => collect_terms(ops, inner, a, !negative, terms, false),
+        _ => terms.push((negative, node)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::sym::{Array, Graph, Node};
+
+    /// A chain of `depth` products of x: ready late.
+    fn late(g: &Graph, x: Node, depth: usize) -> Node {
+        (0..depth).fold(x, |acc, _| g.mul(acc, x))
+    }
+
+    /// ((late − a) + b) − c regrouped adds the late term last, with the same operations
+    /// and a value equal up to rounding.
+    #[test]
+    fn the_latest_term_is_added_last() {
+        let g = Graph::new();
+        let [x, a, b, c] = [0, 1, 2, 3].map(|k| g.input(Array::Q, k));
+        let slow = late(&g, x, 6);
+        let sum = g.sub(g.add(g.sub(slow, a), b), c);
+        let (new, outs) = g.regrouped(&[sum]);
+        let (before, after) = (g.op_count(&[sum]), new.op_count(&outs));
+        assert_eq!((after.add, after.mul), (before.add, before.mul));
+        // The builders' orientation rule wrote slow − a as −(a − slow); the sign folds away.
+        assert_eq!((before.neg, after.neg), (1, 0));
+        let root = outs[0];
+        let crate::sym::Op::Add(p, q) = new.op(root) else {
+            panic!("root is {}", new.op(root))
+        };
+        assert!(
+            [p, q]
+                .iter()
+                .any(|&n| matches!(new.op(n), crate::sym::Op::Mul(..))),
+            "the product chain enters at the root: {}",
+            new.op(root)
+        );
+        let input = |r: crate::sym::InputRef| [1.1, 0.3, -2.0, 0.7][r.index as usize];
+        let before = g.eval(input, &[sum])[0];
+        let after = new.eval(input, &outs)[0];
+        assert!(
+            (before - after).abs() <= 1e-15 * before.abs(),
+            "{before} vs {after}"
+        );
+    }
+
+    /// A shared partial sum is a term of each sum using it, computed once; a sum of only
+    /// negative terms keeps its one sign flip, and a sign flip over a sum with a positive
+    /// term disappears.
+    #[test]
+    fn shared_sums_stay_and_signs_do_not_add_operations() {
+        let g = Graph::new();
+        let [a, b, c, d] = [0, 1, 2, 3].map(|k| g.input(Array::V, k));
+        let shared = g.add(a, b);
+        let one = g.add(shared, c);
+        let two = g.sub(shared, d);
+        let all_negative = g.neg(g.add(c, d));
+        let flipped = g.neg(g.sub(c, g.mul(a, d)));
+        let outputs = [one, two, all_negative, flipped];
+        let (new, outs) = g.regrouped(&outputs);
+        let before = g.op_count(&outputs);
+        let after = new.op_count(&outs);
+        assert_eq!((after.add, after.mul), (before.add, before.mul));
+        assert!(after.neg <= before.neg, "{after} vs {before}");
+        let input = |r: crate::sym::InputRef| [0.5, -1.25, 3.0, 0.75][r.index as usize];
+        assert_eq!(g.eval(input, &outputs), new.eval(input, &outs));
+    }
+
+    /// Random DAGs of sums, differences, sign flips and products with shared nodes (every
+    /// node is an output in turn): the regrouped graph needs no more operations and agrees
+    /// with the original up to the rounding of the regrouped additions.
+    #[test]
+    fn random_dags_keep_their_values_and_operation_counts() {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = |n: u64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state % n
+        };
+        for case in 0..300 {
+            let g = Graph::new();
+            let mut nodes: Vec<Node> = (0..4).map(|k| g.input(Array::A, k)).collect();
+            for _ in 0..30 {
+                let len = nodes.len() as u64;
+                let a = nodes[next(len) as usize];
+                let b = nodes[next(len) as usize];
+                nodes.push(match next(5) {
+                    0 | 1 => g.add(a, b),
+                    2 => g.sub(a, b),
+                    3 => g.neg(a),
+                    _ => g.mul(a, b),
+                });
+            }
+            let outputs: Vec<Node> = nodes.iter().rev().step_by(3).copied().collect();
+            let (new, outs) = g.regrouped(&outputs);
+            let (before, after) = (g.op_count(&outputs), new.op_count(&outs));
+            assert!(
+                after.add <= before.add && after.mul <= before.mul && after.neg <= before.neg,
+                "case {case}: {after} vs {before}"
+            );
+            let input = |r: crate::sym::InputRef| [0.3, -1.7, 2.2, 0.9][r.index as usize];
+            let (x, y) = (g.eval(input, &outputs), new.eval(input, &outs));
+            for (k, (x, y)) in x.iter().zip(&y).enumerate() {
+                let scale = x.abs().max(1.0);
+                assert!(
+                    (x - y).abs() <= 1e-9 * scale,
+                    "case {case}, output {k}: {x} vs {y}"
+                );
+            }
+        }
+    }
+}
