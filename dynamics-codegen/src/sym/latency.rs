@@ -1,4 +1,4 @@
-//! Sums regrouped for latency: the same terms, added earliest-ready first.
+//! Sums and products regrouped for latency: the same terms, combined earliest-ready first.
 //!
 //! The expansion writes a sum in the textbook's order, e.g. the forward sweep's
 //! α_i = Eᵀα_λ + s q̈ + (Eᵀω_λ) × s q̇ as ((c α_x − s α_y) + q̈) − q̇ ω_y: the term that waits
@@ -19,8 +19,13 @@
 //! textbook's order only by the rounding of the additions (an error bound of the same
 //! size, not the same bits), which is why it is the last step before emission and why the
 //! builders themselves never reassociate.
+//!
+//! Products are regrouped the same way (a tree of products whose inner products nothing
+//! else uses, e.g. c·(s·x) with x late becomes (c·s)·x), and two constant terms or factors
+//! that end up combined fold into one constant, so a regrouped function may need fewer
+//! operations than the textbook's order.
 
-use super::{Graph, Node, Op};
+use super::{Const, Graph, Node, Op};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
@@ -39,13 +44,25 @@ fn latency(op: Op) -> u32 {
     }
 }
 
-fn is_sum(op: Op) -> bool {
-    matches!(op, Op::Add(..) | Op::Sub(..) | Op::Neg(_))
+/// What a node is part of: a sum (`+`, `−`, sign flip), a product, or neither.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Sum,
+    Product,
+    Other,
 }
 
-/// A term of a sum: its node in the new graph, its sign, when it is ready, and its place
-/// among the sum's terms (ties go to the earlier term, so a sum of terms ready at once keeps
-/// its order).
+fn kind(op: Op) -> Kind {
+    match op {
+        Op::Add(..) | Op::Sub(..) | Op::Neg(_) => Kind::Sum,
+        Op::Mul(..) => Kind::Product,
+        _ => Kind::Other,
+    }
+}
+
+/// A term of a sum or a factor of a product: its node in the new graph, its sign (always
+/// positive for a factor), when it is ready, and its place among the terms (ties go to the
+/// earlier term, so terms ready at once keep their order).
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 struct Term {
     ready: u32,
@@ -54,11 +71,96 @@ struct Term {
     node: Node,
 }
 
+/// The copy being built: the new graph and each new node's estimated ready time.
+struct Regrouping {
+    graph: Graph,
+    ready: Vec<u32>,
+}
+
+impl Regrouping {
+    fn intern(&mut self, op: Op) -> Node {
+        let node = self.graph.intern(op);
+        if node.index() == self.ready.len() {
+            let start = op
+                .children()
+                .map(|c| self.ready[c.index()])
+                .max()
+                .unwrap_or(0);
+            self.ready.push(start + latency(op));
+        }
+        node
+    }
+
+    fn term(&self, node: Node, negative: bool, place: usize) -> Term {
+        Term {
+            ready: self.ready[node.index()],
+            place,
+            negative,
+            node,
+        }
+    }
+
+    /// Two terms of a sum as one: a + b, a − b, b − a, or −(a + b) kept as a negative term;
+    /// two constants fold.
+    fn add(&mut self, a: Term, b: Term, place: usize) -> Term {
+        let signed = |t: Term, x: f64| if t.negative { -x } else { x };
+        if let (Some(x), Some(y)) = (
+            self.graph.constant_value(a.node),
+            self.graph.constant_value(b.node),
+        ) {
+            let node = self.intern(Op::Const(Const::new(signed(a, x) + signed(b, y))));
+            return self.term(node, false, place);
+        }
+        let (lo, hi) = (a.node.min(b.node), a.node.max(b.node));
+        let (op, negative) = match (a.negative, b.negative) {
+            (false, false) => (Op::Add(lo, hi), false),
+            (true, true) => (Op::Add(lo, hi), true),
+            (false, true) => (Op::Sub(a.node, b.node), false),
+            (true, false) => (Op::Sub(b.node, a.node), false),
+        };
+        let node = self.intern(op);
+        self.term(node, negative, place)
+    }
+
+    /// Two factors of a product as one; two constants fold.
+    fn mul(&mut self, a: Term, b: Term, place: usize) -> Term {
+        let op = match (
+            self.graph.constant_value(a.node),
+            self.graph.constant_value(b.node),
+        ) {
+            (Some(x), Some(y)) => Op::Const(Const::new(x * y)),
+            _ => Op::Mul(a.node.min(b.node), a.node.max(b.node)),
+        };
+        let node = self.intern(op);
+        self.term(node, false, place)
+    }
+
+    /// The terms combined two at a time, the two earliest-ready first (Huffman's rule).
+    fn combine(
+        &mut self,
+        terms: Vec<Term>,
+        mut pair: impl FnMut(&mut Self, Term, Term, usize) -> Term,
+    ) -> Term {
+        let mut place = terms.len();
+        let mut heap: BinaryHeap<Reverse<Term>> = terms.into_iter().map(Reverse).collect();
+        loop {
+            match (heap.pop(), heap.pop()) {
+                (Some(Reverse(a)), Some(Reverse(b))) => {
+                    heap.push(Reverse(pair(self, a, b, place)));
+                    place += 1;
+                }
+                (Some(Reverse(last)), None) => return last,
+                _ => unreachable!("a sum or product has a term"),
+            }
+        }
+    }
+}
+
 impl Graph {
-    /// A new graph holding what `outputs` need, with every sum regrouped so that its
-    /// earliest-ready terms are added first (module documentation), and the outputs' nodes
-    /// in it. Nodes are created in the order of the old graph, so the emitted code keeps
-    /// its order.
+    /// A new graph holding what `outputs` need, with every sum and product regrouped so
+    /// that its earliest-ready terms are combined first (module documentation), and the
+    /// outputs' nodes in it. Nodes are created in the order of the old graph, so the
+    /// emitted code keeps its order.
     #[must_use]
     pub fn regrouped(&self, outputs: &[Node]) -> (Graph, Vec<Node>) {
         let ops = self.ops();
@@ -75,27 +177,21 @@ impl Graph {
         for &out in outputs {
             is_output[out.index()] = true;
         }
-        // Inner nodes of a sum: a sum that one sum alone uses.
+        // Inner nodes: a sum that one sum alone uses, a product that one product alone uses.
         let inner: Vec<bool> = (0..ops.len())
             .map(|i| {
-                is_sum(ops[i])
+                kind(ops[i]) != Kind::Other
                     && uses[i] == 1
                     && !is_output[i]
-                    && user[i].is_some_and(|u| is_sum(ops[u.index()]))
+                    && user[i].is_some_and(|u| kind(ops[u.index()]) == kind(ops[i]))
             })
             .collect();
 
-        let new = Graph::new();
-        let mut map: Vec<Option<Node>> = vec![None; ops.len()];
-        let mut ready: Vec<u32> = Vec::new();
-        let intern = |op: Op, ready: &mut Vec<u32>| {
-            let node = new.intern(op);
-            if node.index() == ready.len() {
-                let start = op.children().map(|c| ready[c.index()]).max().unwrap_or(0);
-                ready.push(start + latency(op));
-            }
-            node
+        let mut copy = Regrouping {
+            graph: Graph::new(),
+            ready: Vec::new(),
         };
+        let mut map: Vec<Option<Node>> = vec![None; ops.len()];
         for old in live.nodes() {
             let i = old.index();
             if inner[i] {
@@ -103,63 +199,33 @@ impl Graph {
             }
             let m = |n: Node| map[n.index()].expect("operands are mapped before their users");
             let op = ops[i];
-            let node = if is_sum(op) {
-                let mut terms = Vec::new();
-                collect_terms(&ops, &inner, old, false, &mut terms, true);
-                let mut heap: BinaryHeap<Reverse<Term>> = terms
-                    .iter()
-                    .enumerate()
-                    .map(|(place, &(negative, leaf))| {
-                        let node = m(leaf);
-                        Reverse(Term {
-                            ready: ready[node.index()],
-                            place,
-                            negative,
-                            node,
-                        })
-                    })
-                    .collect();
-                let mut place = terms.len();
-                while heap.len() > 1 {
-                    let (Some(Reverse(a)), Some(Reverse(b))) = (heap.pop(), heap.pop()) else {
-                        unreachable!("the heap holds two terms")
-                    };
-                    let (op, negative) = match (a.negative, b.negative) {
-                        (false, false) => (Op::Add(a.node.min(b.node), a.node.max(b.node)), false),
-                        (true, true) => (Op::Add(a.node.min(b.node), a.node.max(b.node)), true),
-                        (false, true) => (Op::Sub(a.node, b.node), false),
-                        (true, false) => (Op::Sub(b.node, a.node), false),
-                    };
-                    let node = intern(op, &mut ready);
-                    heap.push(Reverse(Term {
-                        ready: ready[node.index()],
-                        place,
-                        negative,
-                        node,
-                    }));
-                    place += 1;
-                }
-                let Some(Reverse(last)) = heap.pop() else {
-                    unreachable!("a sum has a term")
-                };
-                if last.negative {
-                    intern(Op::Neg(last.node), &mut ready)
-                } else {
-                    last.node
-                }
-            } else {
+            let node = if kind(op) == Kind::Other {
                 let op = match op {
-                    Op::Const(_) | Op::Input(_) => op,
-                    Op::Add(a, b) => Op::Add(m(a).min(m(b)), m(a).max(m(b))),
-                    Op::Mul(a, b) => Op::Mul(m(a).min(m(b)), m(a).max(m(b))),
-                    Op::Sub(a, b) => Op::Sub(m(a), m(b)),
                     Op::Div(a, b) => Op::Div(m(a), m(b)),
-                    Op::Neg(a) => Op::Neg(m(a)),
                     Op::Sin(a) => Op::Sin(m(a)),
                     Op::Cos(a) => Op::Cos(m(a)),
                     Op::Sqrt(a) => Op::Sqrt(m(a)),
+                    _ => op,
                 };
-                intern(op, &mut ready)
+                copy.intern(op)
+            } else {
+                let mut leaves = Vec::new();
+                collect_terms(&ops, &inner, old, false, &mut leaves, true);
+                let terms = leaves
+                    .iter()
+                    .enumerate()
+                    .map(|(place, &(negative, leaf))| copy.term(m(leaf), negative, place))
+                    .collect();
+                if kind(op) == Kind::Product {
+                    copy.combine(terms, Regrouping::mul).node
+                } else {
+                    let last = copy.combine(terms, Regrouping::add);
+                    if last.negative {
+                        copy.intern(Op::Neg(last.node))
+                    } else {
+                        last.node
+                    }
+                }
             };
             map[i] = Some(node);
         }
@@ -167,12 +233,13 @@ impl Graph {
             .iter()
             .map(|o| map[o.index()].expect("outputs are live"))
             .collect();
-        (new, outputs)
+        (copy.graph, outputs)
     }
 }
 
-/// The signed terms of the sum rooted at `node`: descends through `+`, `−` and sign flips
-/// that are `inner` (and through the root itself), and stops at anything else.
+/// The signed terms of the sum, or the factors of the product, rooted at `node`: descends
+/// through the root and through `inner` nodes of its kind (`+`, `−` and sign flips, or
+/// products), and stops at anything else.
 fn collect_terms(
     ops: &[Op],
     inner: &[bool],
@@ -186,7 +253,7 @@ fn collect_terms(
         return;
     }
     match ops[node.index()] {
-        Op::Add(a, b) => {
+        Op::Add(a, b) | Op::Mul(a, b) => {
             collect_terms(ops, inner, a, negative, terms, false);
             collect_terms(ops, inner, b, negative, terms, false);
         }
@@ -203,9 +270,9 @@ fn collect_terms(
 mod tests {
     use crate::sym::{Array, Graph, Node};
 
-    /// A chain of `depth` products of x: ready late.
+    /// `depth` nested square roots of x: ready late.
     fn late(g: &Graph, x: Node, depth: usize) -> Node {
-        (0..depth).fold(x, |acc, _| g.mul(acc, x))
+        (0..depth).fold(x, |acc, _| g.sqrt(acc))
     }
 
     /// ((late − a) + b) − c regrouped adds the late term last, with the same operations
@@ -214,7 +281,7 @@ mod tests {
     fn the_latest_term_is_added_last() {
         let g = Graph::new();
         let [x, a, b, c] = [0, 1, 2, 3].map(|k| g.input(Array::Q, k));
-        let slow = late(&g, x, 6);
+        let slow = late(&g, x, 3);
         let sum = g.sub(g.add(g.sub(slow, a), b), c);
         let (new, outs) = g.regrouped(&[sum]);
         let (before, after) = (g.op_count(&[sum]), new.op_count(&outs));
@@ -228,8 +295,8 @@ mod tests {
         assert!(
             [p, q]
                 .iter()
-                .any(|&n| matches!(new.op(n), crate::sym::Op::Mul(..))),
-            "the product chain enters at the root: {}",
+                .any(|&n| matches!(new.op(n), crate::sym::Op::Sqrt(..))),
+            "the square root enters at the root: {}",
             new.op(root)
         );
         let input = |r: crate::sym::InputRef| [1.1, 0.3, -2.0, 0.7][r.index as usize];
@@ -306,5 +373,32 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// c·(y·late) becomes (c·y)·late, and 2·(3·late) becomes 6·late: one product fewer.
+    #[test]
+    fn products_take_the_late_factor_last_and_fold_constants() {
+        let g = Graph::new();
+        let [x, y] = [0, 1].map(|k| g.input(Array::Q, k));
+        let slow = late(&g, x, 2);
+        let scaled = g.mul(g.constant(0.5), g.mul(y, slow));
+        let folded = g.mul(g.constant(2.0), g.mul(g.constant(3.0), slow));
+        let (new, outs) = g.regrouped(&[scaled, folded]);
+        let crate::sym::Op::Mul(p, q) = new.op(outs[0]) else {
+            panic!("{}", new.op(outs[0]))
+        };
+        assert!(
+            [p, q]
+                .iter()
+                .any(|&n| matches!(new.op(n), crate::sym::Op::Sqrt(..))),
+            "the square root is the last factor: {}",
+            new.op(outs[0])
+        );
+        let crate::sym::Op::Mul(p, q) = new.op(outs[1]) else {
+            panic!("{}", new.op(outs[1]))
+        };
+        assert!([p, q].iter().any(|&n| new.constant_value(n) == Some(6.0)));
+        assert_eq!(g.op_count(&[folded]).mul, 2);
+        assert_eq!(new.op_count(&outs[1..]).mul, 1);
     }
 }
