@@ -72,13 +72,22 @@ struct Term {
 }
 
 /// The copy being built: the new graph and each new node's estimated ready time.
+///
+/// Each new node also gets a place in the emitted code: a node copied from the old graph
+/// keeps the place of its old node (`current`, the old node being copied), and a partial
+/// sum or product that regrouping makes goes right after the later of its operands, as
+/// the builders would have placed it. (Placed at its sum's end instead, every term of a
+/// sum would stay in a register until then.)
 struct Regrouping {
     graph: Graph,
     ready: Vec<u32>,
+    place: Vec<(usize, u32, usize)>,
+    current: usize,
 }
 
 impl Regrouping {
-    fn intern(&mut self, op: Op) -> Node {
+    /// The node computing `op`; `partial` for a partial sum or product made by regrouping.
+    fn intern(&mut self, op: Op, partial: bool) -> Node {
         let node = self.graph.intern(op);
         if node.index() == self.ready.len() {
             let start = op
@@ -87,8 +96,43 @@ impl Regrouping {
                 .max()
                 .unwrap_or(0);
             self.ready.push(start + latency(op));
+            let after = op
+                .children()
+                .map(|c| self.place[c.index()])
+                .max()
+                .unwrap_or((0, 0, 0));
+            self.place.push(if partial {
+                (after.0, after.1 + 1, node.index())
+            } else {
+                (self.current, 0, node.index())
+            });
         }
         node
+    }
+
+    /// The graph with its nodes in the order of their places, and where each old node went.
+    fn into_ordered(self) -> (Graph, Vec<Node>) {
+        let ops = self.graph.ops();
+        let mut order: Vec<usize> = (0..ops.len()).collect();
+        order.sort_by_key(|&i| self.place[i]);
+        let ordered = Graph::new();
+        let mut moved = vec![Node(0); ops.len()];
+        for i in order {
+            let m = |n: Node| moved[n.index()];
+            let op = match ops[i] {
+                Op::Add(a, b) => Op::Add(m(a), m(b)),
+                Op::Sub(a, b) => Op::Sub(m(a), m(b)),
+                Op::Mul(a, b) => Op::Mul(m(a), m(b)),
+                Op::Div(a, b) => Op::Div(m(a), m(b)),
+                Op::Neg(a) => Op::Neg(m(a)),
+                Op::Sin(a) => Op::Sin(m(a)),
+                Op::Cos(a) => Op::Cos(m(a)),
+                Op::Sqrt(a) => Op::Sqrt(m(a)),
+                op @ (Op::Const(_) | Op::Input(_)) => op,
+            };
+            moved[i] = ordered.intern(op);
+        }
+        (ordered, moved)
     }
 
     fn term(&self, node: Node, negative: bool, place: usize) -> Term {
@@ -108,7 +152,7 @@ impl Regrouping {
             self.graph.constant_value(a.node),
             self.graph.constant_value(b.node),
         ) {
-            let node = self.intern(Op::Const(Const::new(signed(a, x) + signed(b, y))));
+            let node = self.intern(Op::Const(Const::new(signed(a, x) + signed(b, y))), true);
             return self.term(node, false, place);
         }
         let (lo, hi) = (a.node.min(b.node), a.node.max(b.node));
@@ -118,7 +162,7 @@ impl Regrouping {
             (false, true) => (Op::Sub(a.node, b.node), false),
             (true, false) => (Op::Sub(b.node, a.node), false),
         };
-        let node = self.intern(op);
+        let node = self.intern(op, true);
         self.term(node, negative, place)
     }
 
@@ -131,7 +175,7 @@ impl Regrouping {
             (Some(x), Some(y)) => Op::Const(Const::new(x * y)),
             _ => Op::Mul(a.node.min(b.node), a.node.max(b.node)),
         };
-        let node = self.intern(op);
+        let node = self.intern(op, true);
         self.term(node, false, place)
     }
 
@@ -190,6 +234,8 @@ impl Graph {
         let mut copy = Regrouping {
             graph: Graph::new(),
             ready: Vec::new(),
+            place: Vec::new(),
+            current: 0,
         };
         let mut map: Vec<Option<Node>> = vec![None; ops.len()];
         for old in live.nodes() {
@@ -197,6 +243,7 @@ impl Graph {
             if inner[i] {
                 continue;
             }
+            copy.current = i;
             let m = |n: Node| map[n.index()].expect("operands are mapped before their users");
             let op = ops[i];
             let node = if kind(op) == Kind::Other {
@@ -207,7 +254,7 @@ impl Graph {
                     Op::Sqrt(a) => Op::Sqrt(m(a)),
                     _ => op,
                 };
-                copy.intern(op)
+                copy.intern(op, false)
             } else {
                 let mut leaves = Vec::new();
                 collect_terms(&ops, &inner, old, false, &mut leaves, true);
@@ -221,7 +268,7 @@ impl Graph {
                 } else {
                     let last = copy.combine(terms, Regrouping::add);
                     if last.negative {
-                        copy.intern(Op::Neg(last.node))
+                        copy.intern(Op::Neg(last.node), false)
                     } else {
                         last.node
                     }
@@ -229,11 +276,12 @@ impl Graph {
             };
             map[i] = Some(node);
         }
+        let (graph, moved) = copy.into_ordered();
         let outputs = outputs
             .iter()
-            .map(|o| map[o.index()].expect("outputs are live"))
+            .map(|o| moved[map[o.index()].expect("outputs are live").index()])
             .collect();
-        (copy.graph, outputs)
+        (graph, outputs)
     }
 }
 
