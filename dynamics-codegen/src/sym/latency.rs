@@ -118,19 +118,7 @@ impl Regrouping {
         let ordered = Graph::new();
         let mut moved = vec![Node(0); ops.len()];
         for i in order {
-            let m = |n: Node| moved[n.index()];
-            let op = match ops[i] {
-                Op::Add(a, b) => Op::Add(m(a), m(b)),
-                Op::Sub(a, b) => Op::Sub(m(a), m(b)),
-                Op::Mul(a, b) => Op::Mul(m(a), m(b)),
-                Op::Div(a, b) => Op::Div(m(a), m(b)),
-                Op::Neg(a) => Op::Neg(m(a)),
-                Op::Sin(a) => Op::Sin(m(a)),
-                Op::Cos(a) => Op::Cos(m(a)),
-                Op::Sqrt(a) => Op::Sqrt(m(a)),
-                op @ (Op::Const(_) | Op::Input(_)) => op,
-            };
-            moved[i] = ordered.intern(op);
+            moved[i] = ordered.intern(ops[i].with_children(|n| moved[n.index()]));
         }
         (ordered, moved)
     }
@@ -247,14 +235,7 @@ impl Graph {
             let m = |n: Node| map[n.index()].expect("operands are mapped before their users");
             let op = ops[i];
             let node = if kind(op) == Kind::Other {
-                let op = match op {
-                    Op::Div(a, b) => Op::Div(m(a), m(b)),
-                    Op::Sin(a) => Op::Sin(m(a)),
-                    Op::Cos(a) => Op::Cos(m(a)),
-                    Op::Sqrt(a) => Op::Sqrt(m(a)),
-                    _ => op,
-                };
-                copy.intern(op, false)
+                copy.intern(op.with_children(m), false)
             } else {
                 let mut leaves = Vec::new();
                 collect_terms(&ops, &inner, old, false, &mut leaves, true);

@@ -182,6 +182,23 @@ impl Op {
         a.into_iter().chain(b)
     }
 
+    /// The same operation on the operands `f` gives for its own (commutative operands put
+    /// back in id order).
+    #[must_use]
+    pub fn with_children(self, f: impl Fn(Node) -> Node) -> Op {
+        match self {
+            Op::Const(_) | Op::Input(_) => self,
+            Op::Add(a, b) => Op::Add(f(a).min(f(b)), f(a).max(f(b))),
+            Op::Mul(a, b) => Op::Mul(f(a).min(f(b)), f(a).max(f(b))),
+            Op::Sub(a, b) => Op::Sub(f(a), f(b)),
+            Op::Div(a, b) => Op::Div(f(a), f(b)),
+            Op::Neg(a) => Op::Neg(f(a)),
+            Op::Sin(a) => Op::Sin(f(a)),
+            Op::Cos(a) => Op::Cos(f(a)),
+            Op::Sqrt(a) => Op::Sqrt(f(a)),
+        }
+    }
+
     /// Whether this is a leaf (a constant or an input): leaves cost nothing to recompute.
     #[must_use]
     pub fn is_leaf(self) -> bool {
