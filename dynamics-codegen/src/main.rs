@@ -8,7 +8,9 @@
 //! A `.rs` file is searched for `mechanism! { ... }` invocations (URDF paths inside them are
 //! relative to the nearest folder with a `Cargo.toml`, as in the macro). A `.urdf` file is
 //! compiled as a fixed-base mechanism with gravity (0, 0, −9.81) and every output.
-//! `--only NAME` keeps one mechanism; `--ops` prints only the op-count table.
+//! `--only NAME` keeps one mechanism; `--ops` prints only the op-count table. Beside each
+//! count: the longest chain of dependent operations, in estimated cycles
+//! (`Graph::longest_chain`).
 
 use dynamics_codegen::{compile, syntax, to_tokens, Compiled};
 use std::path::{Path, PathBuf};
@@ -104,7 +106,11 @@ fn op_table(compiled: &Compiled) -> String {
     for f in &compiled.functions {
         let nodes = f.spec.output.nodes();
         let count = f.graph.op_count(&nodes);
-        out += &format!("  {:<20} {count}\n", f.spec.name.to_string());
+        let chain = f.graph.longest_chain(&nodes);
+        out += &format!(
+            "  {:<20} {count}; longest chain {chain} cycles\n",
+            f.spec.name.to_string()
+        );
     }
     out
 }

@@ -266,6 +266,23 @@ impl Graph {
     }
 }
 
+impl Graph {
+    /// The estimated time from the inputs to the last of `outputs`, in cycles of the
+    /// latencies above: the longest chain of dependent operations, which bounds straight-line
+    /// code however many operations the processor runs side by side.
+    #[must_use]
+    pub fn longest_chain(&self, outputs: &[Node]) -> u32 {
+        let ops = self.ops();
+        let mut ready = vec![0_u32; ops.len()];
+        for node in self.live(outputs).nodes() {
+            let op = ops[node.index()];
+            let start = op.children().map(|c| ready[c.index()]).max().unwrap_or(0);
+            ready[node.index()] = start + latency(op);
+        }
+        outputs.iter().map(|o| ready[o.index()]).max().unwrap_or(0)
+    }
+}
+
 /// The signed terms of the sum, or the factors of the product, rooted at `node`: descends
 /// through the root and through `inner` nodes of its kind (`+`, `−` and sign flips, or
 /// products), and stops at anything else.
@@ -429,5 +446,18 @@ mod tests {
         assert!([p, q].iter().any(|&n| new.constant_value(n) == Some(6.0)));
         assert_eq!(g.op_count(&[folded]).mul, 2);
         assert_eq!(new.op_count(&outs[1..]).mul, 1);
+    }
+
+    /// a + b + c + d with d late: the chain is d's time plus one addition once regrouped,
+    /// three additions after a before.
+    #[test]
+    fn longest_chain_counts_the_dependent_operations() {
+        let g = Graph::new();
+        let [a, b, c, x] = [0, 1, 2, 3].map(|k| g.input(Array::V, k));
+        let d = late(&g, x, 2);
+        let sum = g.add(g.add(g.add(d, a), b), c);
+        assert_eq!(g.longest_chain(&[sum]), 2 * 18 + 3 * 4);
+        let (new, outs) = g.regrouped(&[sum]);
+        assert_eq!(new.longest_chain(&outs), 2 * 18 + 4);
     }
 }
