@@ -113,21 +113,35 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     sin_cos_impl::<false>(x)
 }
 
-/// [`sin_cos`] of N angles at once, bit for bit the same values. Written as a loop over an
-/// even number of independent angles, which LLVM's loop vectorizer turns into two-wide SSE2
-/// code (two angles per instruction); an odd last angle is done alone (measured: with an
-/// odd trip count, or with the angles paired by hand, LLVM left everything scalar). Straight-line calls of [`sin_cos`] on
-/// separate angles are not vectorized (nothing ties them together).
+/// Angles per SIMD register: four with AVX (`-C target-cpu=native` on a current x86-64),
+/// two otherwise (SSE2, baseline x86-64).
+const LANES: usize = if cfg!(target_feature = "avx") { 4 } else { 2 };
+
+/// [`sin_cos`] of N angles at once, bit for bit the same values. Written as a loop over a
+/// multiple of [`LANES`] independent angles, which LLVM's loop vectorizer turns into SIMD
+/// code (two angles per SSE2 instruction, four per AVX one); the last N mod LANES angles go
+/// through one more such group, padded with zeros (measured with AVX: seven angles in 47 ns
+/// this way, 73 ns with the last three done one at a time; with SSE2 an odd last angle costs
+/// the same alone or padded). Straight-line calls of [`sin_cos`] on separate angles are not
+/// vectorized (nothing ties them together), nor are angles paired by hand.
 #[inline(always)]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut sin = [0.0; N];
     let mut cos = [0.0; N];
-    for i in 0..N - N % 2 {
+    let whole = N - N % LANES;
+    for i in 0..whole {
         (sin[i], cos[i]) = sin_cos(x[i]);
     }
-    if N % 2 == 1 {
+    if whole < N {
         // A condition on the length, known at compile time: no branch on data.
-        (sin[N - 1], cos[N - 1]) = sin_cos(x[N - 1]);
+        let mut padded = [0.0; LANES];
+        padded[..N - whole].copy_from_slice(&x[whole..]);
+        let (mut s, mut c) = ([0.0; LANES], [0.0; LANES]);
+        for i in 0..LANES {
+            (s[i], c[i]) = sin_cos(padded[i]);
+        }
+        sin[whole..].copy_from_slice(&s[..N - whole]);
+        cos[whole..].copy_from_slice(&c[..N - whole]);
     }
     (sin, cos)
 }
