@@ -126,8 +126,8 @@ impl Output {
         })
     }
 
-    /// The same output in a new graph whose sums add their earliest-ready terms first
-    /// ([`Graph::regrouped`]).
+    /// The same output in a new graph whose sums and products combine their earliest-ready
+    /// terms first ([`Graph::regrouped`]).
     #[must_use]
     pub fn regrouped(&self, graph: &Graph) -> (Graph, Output) {
         let old = self.nodes();

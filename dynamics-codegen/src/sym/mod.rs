@@ -22,9 +22,9 @@
 //!
 //! What the builders do not do: reassociate (`(x·2)·3` stays two products), distribute, or
 //! anything else that would change the rounding of the textbook's evaluation order. (Once a
-//! function's graph is complete, [`Graph::regrouped`] copies it with each sum's terms
-//! added earliest-ready first: the one step that changes the rounding of additions, for a
-//! shorter chain of dependent operations.) The only
+//! function's graph is complete, [`Graph::regrouped`] copies it with each sum's terms and
+//! each product's factors combined earliest-ready first: the one step that changes the
+//! rounding of the textbook's order, for a shorter chain of dependent operations.) The only
 //! rules that are not bit-exact in IEEE arithmetic are documented where they live: x·0 = 0
 //! and x−x = 0 (differ when x is infinite or NaN), x+0 = x and 0−x = −x and −(a−b) = b−a
 //! (may differ in the sign of a zero result).
