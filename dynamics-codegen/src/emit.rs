@@ -119,7 +119,7 @@ impl Output {
     #[must_use]
     pub fn settled(&self, graph: &Graph) -> Output {
         let nodes = self.nodes();
-        let uses = use_counts(&graph.ops(), &graph.live(&nodes), &nodes);
+        let uses = graph.live(&nodes).use_counts(&graph.ops(), &nodes);
         self.map(&|n| match graph.op(n) {
             Op::Neg(x) if uses[x.index()] == 1 => graph.settled(n),
             _ => n,
@@ -633,20 +633,6 @@ fn schedule(ops: &[Op], live: &LiveSet, fused: &HashMap<Node, Fused>) -> Vec<Ste
     steps
 }
 
-/// How many times each node is read: as an operand of a live node, or as an output.
-fn use_counts(ops: &[Op], live: &LiveSet, outputs: &[Node]) -> Vec<u32> {
-    let mut uses = vec![0_u32; ops.len()];
-    for n in live.nodes() {
-        for c in ops[n.index()].children() {
-            uses[c.index()] += 1;
-        }
-    }
-    for n in outputs {
-        uses[n.index()] += 1;
-    }
-    uses
-}
-
 /// A sum or difference with a product folded in: ±x·y ± c as `T::mul_add(±x, y, ±c)`.
 #[derive(Clone, Copy, Debug)]
 struct Fused {
@@ -665,7 +651,7 @@ struct Fused {
 /// same two roundings as before (x + (−y) and x − y are the same IEEE operation); built for
 /// a CPU with FMA (`-C target-cpu=native`) it is one instruction and one rounding.
 fn fusions(ops: &[Op], live: &LiveSet, outputs: &[Node]) -> HashMap<Node, Fused> {
-    let uses = use_counts(ops, live, outputs);
+    let uses = live.use_counts(ops, outputs);
     let product = |n: Node| match ops[n.index()] {
         Op::Mul(x, y) if uses[n.index()] == 1 => Some((n, x, y)),
         _ => None,

@@ -32,6 +32,22 @@ impl LiveSet {
             .filter(|(_, &l)| l)
             .map(|(i, _)| Node(u32::try_from(i).expect("node ids fit in u32")))
     }
+
+    /// How many times each node of `ops` (the graph's operations) is read: as an operand
+    /// of a live node, or as one of `outputs`.
+    #[must_use]
+    pub fn use_counts(&self, ops: &[Op], outputs: &[Node]) -> Vec<u32> {
+        let mut uses = vec![0_u32; ops.len()];
+        for n in self.nodes() {
+            for c in ops[n.index()].children() {
+                uses[c.index()] += 1;
+            }
+        }
+        for n in outputs {
+            uses[n.index()] += 1;
+        }
+        uses
+    }
 }
 
 /// How many operations of each kind a set of outputs costs (each live node once).
