@@ -27,38 +27,72 @@
 //!   `let (vS, vC) = T::sin_cos(vX);` at the position of the first of them.
 //! - When sines or cosines of two or more inputs are live (the joint angles, in every
 //!   function of a model with revolute joints), they are computed by one call,
-//!   `let ([vS0, _, vS2], [vC0, vC1, vC2]) = T::sin_cos_array([q[0], q[1], q[2]]);`, at the
-//!   position of the first of them, the inputs read in place (so no input is needed earlier
-//!   than its turn) and `_` for a value no one reads. For `f64` the runtime evaluates the
-//!   angles in pairs with SIMD; a scalar type without such a routine gets one `sin_cos`
-//!   each.
+//!   `let ([vS0, _, vS2], [vC0, vC1, vC2]) = T::sin_cos_array_for::<WIDE, 3>([q[0], q[1], q[2]]);`,
+//!   at the position of the first of them, the inputs read in place (so no input is needed
+//!   earlier than its turn) and `_` for a value no one reads. For `f64` the runtime
+//!   evaluates the angles two per SSE2 instruction, or four per AVX one in the wide copy;
+//!   a scalar type without such a routine gets one `sin_cos` each.
 //! - A product that only one sum or difference uses is written into it:
-//!   `let vN = T::mul_add(vA, vB, vC);` for `vA·vB + vC` (with `-vA` or `-vC` for the two
-//!   differences). `Scalar::mul_add` is `a·b + c` with two roundings, bit for bit the
-//!   separate operations, unless the build targets a CPU with fused multiply-add
-//!   (`-C target-cpu=native`), where it is one instruction and one rounding.
+//!   `let vN = T::mul_add_for::<WIDE>(vA, vB, vC);` for `vA·vB + vC` (with `-vA` or `-vC`
+//!   for the two differences). In the baseline copy (`WIDE = false`) it is
+//!   `Scalar::mul_add`: `a·b + c` with two roundings, bit for bit the separate operations,
+//!   unless the build targets a CPU with fused multiply-add (`-C target-cpu=native`); in
+//!   the wide copy of `f32`/`f64` it is one FMA instruction, one rounding.
 //! - An argument the function does not read is named with a leading underscore.
-//! - No allocation, no branch, no panic.
+//! - No allocation, no branch on data, no panic.
+//!
+//! # Two copies of each kernel, chosen at run time
+//!
+//! The statements above are the body of a nested `#[inline(always)]` function
+//! `kernel<T, const WIDE: bool>`, and the emitted function hands both instantiations to
+//! the scalar type:
+//!
+//! ```text
+//! pub fn mass_matrix<T: Scalar>(q: &[T; 6]) -> [[T; 6]; 6] {
+//!     #[inline(always)]
+//!     fn kernel<T: Scalar, const WIDE: bool>(q: &[T; 6]) -> [[T; 6]; 6] { … }
+//!     T::run_kernel(
+//!         #[inline(always)]
+//!         || kernel::<T, true>(q),
+//!         #[inline(always)]
+//!         || kernel::<T, false>(q),
+//!     )
+//! }
+//! ```
+//!
+//! For `f32` and `f64`, `run_kernel` (`dynamics_runtime::isa`) runs the `WIDE` copy
+//! compiled for AVX2 and FMA when the CPU has them (one relaxed load and a branch that
+//! never changes), the baseline copy otherwise; other scalar types run the baseline copy
+//! and never instantiate the other. A function with fewer than [`MIN_DISPATCHED_OPS`]
+//! operations and at most one angle's sine and cosine is emitted as the baseline body
+//! alone, after `const WIDE: bool = false;`: the choice would cost more than it saves.
 //!
 //! # Splitting long functions
 //!
 //! rustc's compile time grows roughly quadratically with the length of a function, so when
 //! more than [`FunctionSpec::split_threshold`] nodes are live the body is cut into pieces
-//! of about equal length. Each piece is an `#[inline(never)]` function nested inside the
-//! emitted function (so the emitted code stays a single item, usable at module level or in
-//! an `impl` block), and the emitted function only chains them:
+//! of about equal length. Each piece is a kernel of its own, nested inside the emitted
+//! function (so the emitted code stays a single item, usable at module level or in an
+//! `impl` block), run by `T::run_piece`, which keeps either copy out of line; the emitted
+//! function only chains them:
 //!
 //! ```text
 //! pub fn f<T: Scalar>(q: &[T; 7], v: &[T; 7]) -> [T; 7] {
-//!     fn part_1<T: Scalar>(q: &[T; 7], v: &[T; 7]) -> [T; 40] { … [v12, v17, …] }
-//!     fn part_2<T: Scalar>(q: &[T; 7], carry: &[T; 40]) -> [T; 35] {
+//!     #[inline(always)]
+//!     fn part_1<T: Scalar, const WIDE: bool>(q: &[T; 7], v: &[T; 7]) -> [T; 40] { … }
+//!     #[inline(always)]
+//!     fn part_2<T: Scalar, const WIDE: bool>(q: &[T; 7], carry: &[T; 40]) -> [T; 35] {
 //!         let [v12, v17, …] = *carry;
 //!         …
 //!     }
-//!     fn part_3<T: Scalar>(v: &[T; 7], carry: &[T; 35]) -> [T; 7] { … }
-//!     let carry_1 = part_1(q, v);
-//!     let carry_2 = part_2(q, &carry_1);
-//!     part_3(v, &carry_2)
+//!     …
+//!     let carry_1 = T::run_piece(
+//!         #[inline(always)]
+//!         || part_1::<T, true>(q, v),
+//!         #[inline(always)]
+//!         || part_1::<T, false>(q, v),
+//!     );
+//!     …
 //! }
 //! ```
 //!
@@ -275,10 +309,26 @@ pub fn emit_function(graph: &Graph, spec: &FunctionSpec) -> TokenStream {
         quote!(#ident: &[T; #len])
     });
 
-    let body = if plan.pieces.len() == 1 {
-        plan.piece_body(&ops, 0, &spec.output)
-    } else {
+    let body = if plan.pieces.len() > 1 {
         plan.chained_pieces(&ops, spec)
+    } else if !worth_dispatching(&graph.op_count(&outputs)) {
+        let body = plan.piece_body(&ops, 0, &spec.output);
+        quote!(const WIDE: bool = false; #body)
+    } else {
+        let (kernel_params, args) = array_params(&plan.pieces[0].arrays, spec);
+        let body = plan.piece_body(&ops, 0, &spec.output);
+        quote! {
+            #[inline(always)]
+            fn kernel<T: #trait_, const WIDE: bool>(#(#kernel_params),*) -> #ret {
+                #body
+            }
+            T::run_kernel(
+                #[inline(always)]
+                || kernel::<T, true>(#(#args),*),
+                #[inline(always)]
+                || kernel::<T, false>(#(#args),*),
+            )
+        }
     };
 
     quote! {
@@ -297,6 +347,36 @@ pub fn emit_function(graph: &Graph, spec: &FunctionSpec) -> TokenStream {
             #body
         }
     }
+}
+
+/// Functions with fewer operations than this, and sines and cosines of at most one
+/// angle, run their baseline copy only: the run-time choice and the call it costs (a
+/// nanosecond or two) would outweigh what the wide copy saves.
+pub const MIN_DISPATCHED_OPS: usize = 32;
+
+/// Whether a function of `count` operations gets the AVX2 + FMA copy and the run-time
+/// choice between the two: from [`MIN_DISPATCHED_OPS`] operations, or with two angles'
+/// sines and cosines (the wide copy takes four angles per instruction).
+fn worth_dispatching(count: &OpCount) -> bool {
+    count.total() >= MIN_DISPATCHED_OPS || count.trig > 2
+}
+
+/// `name: &[T; len]` parameters for the input arrays `arrays` (lengths from `spec.args`),
+/// and the names as arguments.
+fn array_params(arrays: &BTreeSet<Array>, spec: &FunctionSpec) -> (Vec<TokenStream>, Vec<Ident>) {
+    arrays
+        .iter()
+        .map(|&array| {
+            let a = format_ident!("{}", array.name());
+            let len = spec
+                .args
+                .iter()
+                .find(|arg| arg.array == array)
+                .map_or(0, |arg| arg.len);
+            let len = Literal::usize_unsuffixed(len);
+            (quote!(#a: &[T; #len]), a)
+        })
+        .unzip()
 }
 
 /// `#[doc]` attributes: the description, a blank line, and the op count.
@@ -509,29 +589,18 @@ impl Plan {
         quote!(#(#stmts)* #result)
     }
 
-    /// The body of a split function: the pieces as nested functions, then their chain.
+    /// The body of a split function: the pieces as nested kernels, then their chain, each
+    /// piece run by `T::run_piece`.
     fn chained_pieces(&self, ops: &[Op], spec: &FunctionSpec) -> TokenStream {
         let trait_ = &spec.scalar_trait;
-        let len_of = |array: Array| {
-            spec.args
-                .iter()
-                .find(|a| a.array == array)
-                .map_or(0, |a| a.len)
-        };
         let n = self.pieces.len();
         let mut fns = Vec::new();
         let mut calls = Vec::new();
         for (p, piece) in self.pieces.iter().enumerate() {
             let part = format_ident!("part_{}", p + 1);
             let carry = format_ident!("carry_{p}");
-            let mut params = Vec::new();
-            let mut args = Vec::new();
-            for &array in &piece.arrays {
-                let a = format_ident!("{}", array.name());
-                let len = Literal::usize_unsuffixed(len_of(array));
-                params.push(quote!(#a: &[T; #len]));
-                args.push(quote!(#a));
-            }
+            let (mut params, args) = array_params(&piece.arrays, spec);
+            let mut args: Vec<TokenStream> = args.iter().map(|a| quote!(#a)).collect();
             if !piece.carry_in.is_empty() {
                 let k = Literal::usize_unsuffixed(piece.carry_in.len());
                 params.push(quote!(carry: &[T; #k]));
@@ -548,16 +617,24 @@ impl Plan {
             let body = self.piece_body(ops, p, &spec.output);
             fns.push(quote! {
                 #[doc = #doc]
-                #[inline(never)]
-                fn #part<T: #trait_>(#(#params),*) -> #ret {
+                #[inline(always)]
+                fn #part<T: #trait_, const WIDE: bool>(#(#params),*) -> #ret {
                     #body
                 }
             });
+            let run = quote! {
+                T::run_piece(
+                    #[inline(always)]
+                    || #part::<T, true>(#(#args),*),
+                    #[inline(always)]
+                    || #part::<T, false>(#(#args),*),
+                )
+            };
             if p + 1 < n {
                 let next = format_ident!("carry_{}", p + 1);
-                calls.push(quote!(let #next = #part(#(#args),*);));
+                calls.push(quote!(let #next = #run;));
             } else {
-                calls.push(quote!(#part(#(#args),*)));
+                calls.push(run);
             }
         }
         quote!(#(#fns)* #(#calls)*)
@@ -725,7 +802,7 @@ fn let_step(step: &Step, ops: &[Op], fused: &HashMap<Node, Fused>) -> TokenStrea
                 } else {
                     quote!(#c)
                 };
-                quote!(let #v = T::mul_add(#x, #y, #c);)
+                quote!(let #v = T::mul_add_for::<WIDE>(#x, #y, #c);)
             }
             None => let_node(*n, ops[n.index()]),
         },
@@ -746,7 +823,8 @@ fn let_step(step: &Step, ops: &[Op], fused: &HashMap<Node, Fused>) -> TokenStrea
             let sins = angles.iter().map(|a| name(a.sin));
             let coss = angles.iter().map(|a| name(a.cos));
             let args = angles.iter().map(|a| input_expr(ops[a.arg.index()]));
-            quote!(let ([#(#sins),*], [#(#coss),*]) = T::sin_cos_array([#(#args),*]);)
+            let n = Literal::usize_unsuffixed(angles.len());
+            quote!(let ([#(#sins),*], [#(#coss),*]) = T::sin_cos_array_for::<WIDE, #n>([#(#args),*]);)
         }
     }
 }
@@ -894,9 +972,9 @@ mod tests {
         let spec = spec("f", &[(Array::Q, 3)], output);
         let text = pretty(emit_function(&g, &spec));
         for line in [
-            "T::mul_add(v0, v1, v2)",
-            "T::mul_add(v0, v2, -v1)",
-            "T::mul_add(-v1, v2, v0)",
+            "T::mul_add_for::<WIDE>(v0, v1, v2)",
+            "T::mul_add_for::<WIDE>(v0, v2, -v1)",
+            "T::mul_add_for::<WIDE>(-v1, v2, v0)",
         ] {
             assert!(text.contains(line), "{line} missing in\n{text}");
         }
@@ -967,6 +1045,7 @@ mod tests {
 )]
 #[must_use]
 pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) -> [T; 4] {
+    const WIDE: bool = false;
     let v0 = q[0];
     let v1 = v[0];
     let v2 = a[0];
@@ -974,7 +1053,7 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
     let v5 = T::from_f64(0.5_f64);
     let v8 = T::from_f64(9.81_f64);
     let v9 = v3 * v8;
-    let v11 = T::mul_add(v2, v5, -v9);
+    let v11 = T::mul_add_for::<WIDE>(v2, v5, -v9);
     let v12 = v1 * v4;
     let v13 = T::from_f64(0.1_f64);
     [v11, v12, v0, v13]
@@ -1009,16 +1088,28 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
             .skip_while(|l| !l.starts_with("pub fn"))
             .collect();
         assert_eq!(
-            body[1..7],
+            body[1..13],
             [
-                "    let v0 = v[0];",
-                "    let v1 = q[0];",
-                "    let v2 = q[1];",
-                "    let ([_, v7, v4], [v6, v8, _]) = T::sin_cos_array([q[0], q[1], q[2]]);",
-                "    let v5 = v0 * v4;",
-                "    let v9 = v1 + v2;",
+                "    #[inline(always)]",
+                "    fn kernel<T: Scalar, const WIDE: bool>(q: &[T; 3], v: &[T; 1]) -> [T; 5] {",
+                "        let v0 = v[0];",
+                "        let v1 = q[0];",
+                "        let v2 = q[1];",
+                "        let ([_, v7, v4], [v6, v8, _]) = T::sin_cos_array_for::<",
+                "            WIDE,",
+                "            3,",
+                "        >([q[0], q[1], q[2]]);",
+                "        let v5 = v0 * v4;",
+                "        let v9 = v1 + v2;",
+                "        let v10 = T::sin(v9);",
             ][..],
             "got:\n{text}"
+        );
+        // Three angles: worth the AVX2 + FMA copy and the run-time choice.
+        assert!(
+            text.contains("|| kernel::<T, true>(q, v),")
+                && text.contains("|| kernel::<T, false>(q, v),"),
+            "{text}"
         );
         assert!(
             text.contains("let v10 = T::sin(v9);"),
@@ -1178,13 +1269,21 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
         let pieces = live.div_ceil(300);
         assert!(pieces >= 3, "{live} live nodes");
         for p in 1..=pieces {
-            assert!(text.contains(&format!("fn part_{p}<T: Scalar>")), "{text}");
+            assert!(
+                text.contains(&format!("fn part_{p}<T: Scalar, const WIDE: bool>")),
+                "{text}"
+            );
         }
         assert!(!text.contains(&format!("fn part_{}", pieces + 1)));
-        assert!(text.contains("#[inline(never)]"));
+        assert_eq!(text.matches("T::run_piece(").count(), pieces, "{text}");
         assert!(text.contains("let [v"), "later pieces unpack their carry");
-        assert!(text.contains("let carry_1 = part_1(q, v);"), "{text}");
-        assert!(text.contains(&format!("part_{pieces}(v, &carry_{})", pieces - 1)));
+        assert!(text.contains("let carry_1 = T::run_piece("), "{text}");
+        assert!(text.contains("|| part_1::<T, true>(q, v),"), "{text}");
+        assert!(text.contains("|| part_1::<T, false>(q, v),"), "{text}");
+        assert!(text.contains(&format!(
+            "|| part_{pieces}::<T, false>(v, &carry_{}),",
+            pieces - 1
+        )));
         syn::parse_str::<syn::File>(&text).expect("pretty text parses again");
 
         s.split_threshold = live; // exactly at the threshold: not split
@@ -1219,6 +1318,22 @@ mod rt {
         }
         fn mul_add(self, a: Self, b: Self) -> Self {
             self * a + b
+        }
+        fn mul_add_for<const WIDE: bool>(self, a: Self, b: Self) -> Self {
+            self.mul_add(a, b)
+        }
+        fn sin_cos_array_for<const WIDE: bool, const N: usize>(
+            x: [Self; N],
+        ) -> ([Self; N], [Self; N]) {
+            Self::sin_cos_array(x)
+        }
+        // The stub runs the `WIDE = true` copies, so that both instantiations compile and
+        // one of them runs.
+        fn run_kernel<R>(wide: impl FnOnce() -> R, _narrow: impl FnOnce() -> R) -> R {
+            wide()
+        }
+        fn run_piece<R>(wide: impl FnOnce() -> R, _narrow: impl FnOnce() -> R) -> R {
+            wide()
         }
     }
     impl Scalar for f64 {

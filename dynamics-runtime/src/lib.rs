@@ -12,6 +12,7 @@ pub mod double_double;
 pub mod dynamics;
 pub mod fast_trig;
 pub mod integrators;
+pub mod isa;
 pub mod mechanism;
 pub mod model;
 pub mod reference;

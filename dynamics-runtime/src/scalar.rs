@@ -64,6 +64,37 @@ pub trait Scalar:
     fn mul_add(self, a: Self, b: Self) -> Self {
         self * a + b
     }
+    /// `self · a + b` in the `WIDE` copy of a generated kernel ([`crate::isa`]): the
+    /// baseline copy (`WIDE = false`) calls [`Scalar::mul_add`]; the wide copy of `f32` and
+    /// `f64`, compiled for FMA, fuses (one instruction, one rounding). The default is
+    /// `mul_add` in both.
+    #[inline(always)]
+    #[must_use]
+    fn mul_add_for<const WIDE: bool>(self, a: Self, b: Self) -> Self {
+        self.mul_add(a, b)
+    }
+    /// [`Scalar::sin_cos_array`] in the `WIDE` copy of a generated kernel: for `f64` the
+    /// wide copy takes four angles per AVX register with fused Estrin steps
+    /// ([`crate::fast_trig::avx2::sin_cos_array`]). The default is `sin_cos_array` in both.
+    #[inline(always)]
+    fn sin_cos_array_for<const WIDE: bool, const N: usize>(x: [Self; N]) -> ([Self; N], [Self; N]) {
+        Self::sin_cos_array(x)
+    }
+    /// Runs a whole generated function, `wide` (its `WIDE = true` kernel) or `narrow`. `f32`
+    /// and `f64` choose at run time with [`crate::isa::run`]; the default runs `narrow`, so
+    /// other types never instantiate the wide kernel.
+    #[inline(always)]
+    fn run_kernel<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
+        let _ = wide;
+        narrow()
+    }
+    /// Runs one piece of a split generated function like [`Scalar::run_kernel`], each copy
+    /// out of line ([`crate::isa::run_piece`]), so that the pieces stay separate functions.
+    #[inline(always)]
+    fn run_piece<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
+        let _ = wide;
+        crate::isa::out_of_line(narrow)
+    }
 }
 
 /// A [`Scalar`] that the run-time solvers (Newton's method, pivoting) can test and report:
@@ -132,6 +163,22 @@ macro_rules! impl_float_scalar {
                     self * a + b
                 }
             }
+            #[inline(always)]
+            fn mul_add_for<const WIDE: bool>(self, a: Self, b: Self) -> Self {
+                if WIDE {
+                    <$t>::mul_add(self, a, b)
+                } else {
+                    Scalar::mul_add(self, a, b)
+                }
+            }
+            #[inline(always)]
+            fn run_kernel<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
+                crate::isa::run(wide, narrow)
+            }
+            #[inline(always)]
+            fn run_piece<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
+                crate::isa::run_piece(wide, narrow)
+            }
             $($($extra)*)?
         }
     };
@@ -141,6 +188,16 @@ impl_float_scalar!(f32);
 impl_float_scalar!(f64, {
     #[inline(always)]
     fn sin_cos_array<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+        crate::fast_trig::sin_cos_array(&x)
+    }
+    #[inline(always)]
+    fn sin_cos_array_for<const WIDE: bool, const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+        #[cfg(target_arch = "x86_64")]
+        if WIDE {
+            if let Some(wide) = crate::fast_trig::avx2::sin_cos_array(&x) {
+                return wide;
+            }
+        }
         crate::fast_trig::sin_cos_array(&x)
     }
 });

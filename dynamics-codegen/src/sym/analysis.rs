@@ -82,6 +82,14 @@ impl fmt::Display for OpCount {
     }
 }
 
+impl OpCount {
+    /// All operations, each counted once (a sine or cosine as one).
+    #[must_use]
+    pub fn total(&self) -> usize {
+        self.mul + self.add + self.div + self.neg + self.sqrt + self.trig
+    }
+}
+
 impl Graph {
     /// The nodes needed to compute `outputs`.
     ///

@@ -1,0 +1,166 @@
+//! [`super::sin_cos_mul_add`] on four angles per AVX register, for the generated kernels'
+//! AVX2 + FMA copy ([`crate::isa`]).
+//!
+//! The same operations in the same order as the scalar code, one 256-bit instruction for
+//! four angles each, so every lane is bit for bit `sin_cos_mul_add` of its angle (tested).
+//! Written with `core::arch` rather than left to LLVM's vectorizers: on four angles the
+//! loop vectorizer sees a loop it has already unrolled, and the SLP vectorizer paired the
+//! sine and cosine polynomials of one angle instead of four angles, half of the code
+//! scalar.
+
+#![allow(unsafe_code)] // two transmutes between `[f64; 4]` and `__m256d`; proofs below
+
+use super::{C, FRAC_2_PI, HUGE_BITS, PIO2_1, PIO2_2, PIO2_3, ROUND, S};
+use core::arch::x86_64::{
+    __m256d, _mm256_add_epi64, _mm256_add_pd, _mm256_and_si256, _mm256_castpd_si256,
+    _mm256_castsi256_pd, _mm256_cmpgt_epi64, _mm256_fmadd_pd, _mm256_mul_pd, _mm256_or_si256,
+    _mm256_set1_epi64x, _mm256_set1_pd, _mm256_slli_epi64, _mm256_sub_epi64, _mm256_sub_pd,
+    _mm256_xor_si256,
+};
+
+/// Sines and cosines of N angles, four at a time, the last group padded with zeros: each
+/// lane bit for bit [`super::sin_cos_mul_add`]. `None` when this CPU lacks AVX2 or FMA
+/// (or [`crate::isa`] is pinned to the baseline); the generated kernels call it only from
+/// their AVX2 + FMA copy, where it is always `Some`.
+#[inline]
+#[must_use]
+pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> Option<([f64; N], [f64; N])> {
+    if !crate::isa::wide() {
+        return None;
+    }
+    let mut sin = [0.0; N];
+    let mut cos = [0.0; N];
+    let mut start = 0;
+    while start < N {
+        // Conditions on the length, known at compile time: no branch on data.
+        let len = 4.min(N - start);
+        let mut group = [0.0; 4];
+        group[..len].copy_from_slice(&x[start..start + len]);
+        // SAFETY: `crate::isa::wide()` returned true, which it does only after std's
+        // `is_x86_feature_detected!` found AVX2 and FMA on this CPU; `sin_cos_x4`
+        // requires nothing else.
+        let (s, c) = unsafe { sin_cos_x4(group) };
+        sin[start..start + len].copy_from_slice(&s[..len]);
+        cos[start..start + len].copy_from_slice(&c[..len]);
+        start += 4;
+    }
+    Some((sin, cos))
+}
+
+/// The four lanes of `x`, step by step as `super::sin_cos_impl::<true>`.
+///
+/// # Safety
+/// The CPU must have AVX2 and FMA.
+#[target_feature(enable = "avx2,fma")]
+#[inline]
+unsafe fn sin_cos_x4(x: [f64; 4]) -> ([f64; 4], [f64; 4]) {
+    let splat = |c: f64| _mm256_set1_pd(c);
+    let (add, sub, mul) = (_mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd);
+    // SAFETY: `[f64; 4]` and `__m256d` are both 32 bytes, and every bit pattern is a
+    // valid value of either.
+    let x: __m256d = unsafe { core::mem::transmute::<[f64; 4], __m256d>(x) };
+
+    // 1. Quadrant.
+    let shifted = add(mul(x, splat(FRAC_2_PI)), splat(ROUND));
+    let n = sub(shifted, splat(ROUND));
+    // 2. Cody–Waite reduction into r + rl.
+    let a = sub(x, mul(n, splat(PIO2_1)));
+    let p2 = mul(n, splat(PIO2_2));
+    let p3 = mul(n, splat(PIO2_3));
+    let tail = add(p2, p3);
+    let tail_low = add(sub(p2, tail), p3);
+    let r = sub(a, tail);
+    let rl = sub(sub(sub(a, r), tail), tail_low);
+    // 3. Polynomials (Estrin; the steps fused, as in `sin_cos_mul_add`).
+    let z = mul(r, r);
+    let half_z = mul(splat(0.5), z);
+    let z2 = mul(z, z);
+    let z4 = mul(z2, z2);
+    let estrin = |k: [f64; 6]| {
+        let lo = _mm256_fmadd_pd(splat(k[1]), z, splat(k[0]));
+        let mid = _mm256_fmadd_pd(splat(k[3]), z, splat(k[2]));
+        let hi = _mm256_fmadd_pd(splat(k[5]), z, splat(k[4]));
+        add(lo, add(mul(z2, mid), mul(z4, hi)))
+    };
+    let (ps, pc) = (estrin(S), estrin(C));
+    let sin = add(r, add(mul(mul(r, z), ps), sub(rl, mul(rl, half_z))));
+    let one = splat(1.0);
+    let w = sub(one, half_z);
+    let cos = add(
+        w,
+        add(sub(sub(one, w), half_z), sub(mul(z2, pc), mul(r, rl))),
+    );
+
+    // 4. Quadrant selection by bits; all ones (a NaN) where |x| ≥ 2⁵⁰ or x is NaN.
+    let bits = _mm256_castpd_si256;
+    let int = _mm256_set1_epi64x;
+    let quadrant = bits(shifted);
+    let swap = _mm256_sub_epi64(int(0), _mm256_and_si256(quadrant, int(1)));
+    let sin_sign = _mm256_slli_epi64::<62>(_mm256_and_si256(quadrant, int(2)));
+    let cos_sign =
+        _mm256_slli_epi64::<62>(_mm256_and_si256(_mm256_add_epi64(quadrant, int(1)), int(2)));
+    let magnitude = _mm256_and_si256(bits(x), int(i64::MAX));
+    #[allow(clippy::cast_possible_wrap)] // 2⁵⁰'s bits are below i64::MAX
+    let huge = _mm256_cmpgt_epi64(magnitude, int(HUGE_BITS as i64 - 1));
+    let (sb, cb) = (bits(sin), bits(cos));
+    let d = _mm256_and_si256(_mm256_xor_si256(sb, cb), swap);
+    let sin = _mm256_or_si256(_mm256_xor_si256(_mm256_xor_si256(sb, d), sin_sign), huge);
+    let cos = _mm256_or_si256(_mm256_xor_si256(_mm256_xor_si256(cb, d), cos_sign), huge);
+    // SAFETY: as above, same size and every bit pattern valid.
+    unsafe {
+        (
+            core::mem::transmute::<__m256d, [f64; 4]>(_mm256_castsi256_pd(sin)),
+            core::mem::transmute::<__m256d, [f64; 4]>(_mm256_castsi256_pd(cos)),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::PI;
+
+    /// Every lane of every length 0–9 is bit for bit `sin_cos_mul_add` (or `None` without
+    /// AVX2 and FMA), including NaN, −0, a large angle and one beyond 2⁵⁰.
+    #[test]
+    fn lanes_are_sin_cos_mul_add() {
+        fn check<const N: usize>(all: &[f64; 10]) {
+            let x: [f64; N] = std::array::from_fn(|i| all[i]);
+            let Some((s, c)) = super::sin_cos_array(&x) else {
+                assert!(!crate::isa::wide());
+                return;
+            };
+            for i in 0..N {
+                let (s1, c1) = super::super::sin_cos_mul_add(x[i]);
+                assert_eq!(
+                    (s[i].to_bits(), c[i].to_bits()),
+                    (s1.to_bits(), c1.to_bits()),
+                    "angle {i} of {N}: {}",
+                    x[i]
+                );
+            }
+        }
+        let x = [
+            -3.0,
+            -1.0,
+            0.1,
+            PI / 4.0,
+            2.0,
+            1e5,
+            f64::NAN,
+            -0.0,
+            7.5,
+            1e16,
+        ];
+        check::<0>(&x);
+        check::<1>(&x);
+        check::<2>(&x);
+        check::<3>(&x);
+        check::<4>(&x);
+        check::<5>(&x);
+        check::<6>(&x);
+        check::<7>(&x);
+        check::<8>(&x);
+        check::<9>(&x);
+        check::<10>(&x);
+    }
+}

@@ -1,0 +1,136 @@
+//! Which instruction set a generated kernel runs on, chosen at run time.
+//!
+//! Contract: each generated function (or each piece of a split one) is a straight-line
+//! kernel instantiated twice, `WIDE = true` and `WIDE = false`. [`run`] calls the wide copy,
+//! compiled here for AVX2 and FMA, when the CPU has both (std's `cpuid` detection, done
+//! once) and `DYNAMICS_ISA` is not `baseline`; otherwise it calls the baseline copy,
+//! compiled for whatever the crate targets (SSE2 on baseline x86-64). On other
+//! architectures the baseline copy always runs.
+//!
+//! The wide copy fuses each product into its sum (`a·b + c` with one rounding instead of
+//! two) and takes sines and cosines four angles at a time with a fused polynomial, so
+//! its results differ from the baseline copy's in the last bits (both stay within the
+//! accuracy the tests state). `DYNAMICS_ISA=baseline` in the environment, read once per
+//! process, pins every kernel to the baseline copy: bit-identical results on every
+//! x86-64 machine. Any other value, or none, means "the widest the CPU has".
+//!
+//! The choice is a relaxed load of one byte and a branch that never changes within a
+//! process (perfectly predicted); it depends on the CPU, never on data.
+
+#![allow(unsafe_code)] // one call of a `#[target_feature]` function; proof at the call
+
+use std::sync::atomic::{AtomicU8, Ordering};
+
+/// Not decided yet.
+const UNKNOWN: u8 = 0;
+/// The baseline copies run.
+const BASELINE: u8 = 1;
+/// The AVX2 + FMA copies run.
+const WIDE: u8 = 2;
+
+static CHOICE: AtomicU8 = AtomicU8::new(UNKNOWN);
+
+/// Whether the wide (AVX2 + FMA) kernels run in this process: the CPU has both features
+/// and `DYNAMICS_ISA` is not `baseline`. Decided at the first call and fixed after it.
+#[inline]
+#[must_use]
+pub fn wide() -> bool {
+    match CHOICE.load(Ordering::Relaxed) {
+        WIDE => true,
+        BASELINE => false,
+        _ => decide(),
+    }
+}
+
+/// Asks for the wide kernels (`true`) or the baseline ones (`false`) from now on in this
+/// process, overriding `DYNAMICS_ISA`: to compare the two in one program, or to pin a
+/// program to bit-identical results on every machine. The wide kernels are granted only
+/// on a CPU with AVX2 and FMA. Returns whether they run now.
+pub fn choose(wide: bool) -> bool {
+    let granted = wide && cpu_has_avx2_fma();
+    CHOICE.store(if granted { WIDE } else { BASELINE }, Ordering::Relaxed);
+    granted
+}
+
+/// Detects the features and reads `DYNAMICS_ISA`. Threads racing here store the same
+/// answer.
+#[cold]
+#[inline(never)]
+fn decide() -> bool {
+    let pinned = std::env::var_os("DYNAMICS_ISA").is_some_and(|v| v == "baseline");
+    let wide = !pinned && cpu_has_avx2_fma();
+    CHOICE.store(if wide { WIDE } else { BASELINE }, Ordering::Relaxed);
+    wide
+}
+
+#[cfg(target_arch = "x86_64")]
+fn cpu_has_avx2_fma() -> bool {
+    std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+fn cpu_has_avx2_fma() -> bool {
+    false
+}
+
+/// Runs a whole generated function: `wide()` when [`wide`] says so, `narrow()` otherwise,
+/// inlined into the caller.
+#[inline(always)]
+pub fn run<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
+    #[cfg(target_arch = "x86_64")]
+    if self::wide() {
+        // SAFETY: `avx2_fma` is compiled for AVX2 and FMA, and `self::wide()` returns true
+        // only when `CHOICE` holds `WIDE`, which `decide` and `choose`, the only places
+        // that store it, do only after std's `is_x86_feature_detected!` found both
+        // features on this CPU. `avx2_fma` requires nothing else.
+        return unsafe { avx2_fma(wide) };
+    }
+    narrow()
+}
+
+/// Runs one piece of a split function like [`run`], but keeps the baseline copy out of
+/// line too, so that the pieces stay separate functions either way.
+#[inline(always)]
+pub fn run_piece<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
+    run(wide, || out_of_line(narrow))
+}
+
+/// `f()` compiled for AVX2 and FMA: the closures the generated code passes are
+/// `#[inline(always)]`, so their kernels are inlined here and compiled with these features.
+///
+/// # Safety
+/// The CPU must have AVX2 and FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn avx2_fma<R>(f: impl FnOnce() -> R) -> R {
+    f()
+}
+
+/// `f()` as a function of its own.
+#[inline(never)]
+pub(crate) fn out_of_line<R>(f: impl FnOnce() -> R) -> R {
+    f()
+}
+
+#[cfg(test)]
+mod tests {
+    /// The wide copy runs exactly when the CPU has AVX2 and FMA and `DYNAMICS_ISA` is not
+    /// `baseline` (CI's second pass sets it); `choose` then switches both ways, but grants
+    /// the wide kernels only with the features. One test, because the choice is global.
+    #[test]
+    fn the_choice_follows_the_cpu_the_environment_and_choose() {
+        let pinned = std::env::var_os("DYNAMICS_ISA").is_some_and(|v| v == "baseline");
+        let automatic = !pinned && super::cpu_has_avx2_fma();
+        assert_eq!(super::wide(), automatic);
+        assert_eq!(super::run(|| 1, || 2) == 1, automatic);
+        assert_eq!(super::run_piece(|| 1, || 2) == 1, automatic);
+
+        assert!(!super::choose(false));
+        assert_eq!(super::run(|| 1, || 2), 2);
+        assert_eq!(super::run_piece(|| 1, || 2), 2);
+        let granted = super::choose(true);
+        assert_eq!(granted, super::cpu_has_avx2_fma());
+        assert_eq!(super::run(|| 1, || 2) == 1, granted);
+        super::choose(automatic);
+    }
+}
