@@ -15,7 +15,10 @@
 //! x86-64 machine. Any other value, or none, means "the widest the CPU has".
 //!
 //! The choice is a relaxed load of one byte and a branch that never changes within a
-//! process (perfectly predicted); it depends on the CPU, never on data.
+//! process (perfectly predicted); it depends on the CPU, never on data. It is made at the
+//! first call of [`wide`] (or of any generated function), which reads the environment and
+//! so allocates once: a real-time program calls [`wide`] during its start-up, before its
+//! loop (as `models/examples/control_loop.rs` does).
 
 #![allow(unsafe_code)] // one call of a `#[target_feature]` function; proof at the call
 

@@ -46,6 +46,10 @@ fn percentiles(mut ns: Vec<u32>) -> (u32, u32, u32) {
 }
 
 fn main() {
+    // The generated code's instruction set (AVX2 + FMA copies or baseline ones) is chosen
+    // at its first call, which reads `DYNAMICS_ISA` from the environment (an allocation):
+    // make that call here, before the real-time loop, not in its first tick.
+    let wide = dynamics_runtime::isa::wide();
     // Tracking with the generated code in the loop.
     let params = [0.0; 0];
     let loads = [0.0; 0];
@@ -117,6 +121,10 @@ fn main() {
         TICKS as f64 * DT
     );
     println!("  worst joint tracking error after the first second: {worst_error:.2e} rad");
+    println!(
+        "  generated code: {} copies (DYNAMICS_ISA=baseline pins the baseline ones)",
+        if wide { "AVX2 + FMA" } else { "baseline" }
+    );
     println!("  controller work per tick (inverse dynamics + mass matrix), ns:");
     println!("  {:<12} {:>8} {:>8} {:>8}", "", "p50", "p99.9", "max");
     for (name, ns) in [("generated", generated_ns), ("reference", reference_ns)] {
