@@ -65,7 +65,8 @@
 //! never changes), the baseline copy otherwise; other scalar types run the baseline copy
 //! and never instantiate the other. A function with fewer than [`MIN_DISPATCHED_OPS`]
 //! operations and at most one angle's sine and cosine is emitted as the baseline body
-//! alone, after `const WIDE: bool = false;`: the choice would cost more than it saves.
+//! alone, after `const WIDE: bool = false;` if the body reads it: the choice would cost
+//! more than it saves.
 //!
 //! # Splitting long functions
 //!
@@ -313,7 +314,16 @@ pub fn emit_function(graph: &Graph, spec: &FunctionSpec) -> TokenStream {
         plan.chained_pieces(&ops, spec)
     } else if !worth_dispatching(&graph.op_count(&outputs)) {
         let body = plan.piece_body(&ops, 0, &spec.output);
-        quote!(const WIDE: bool = false; #body)
+        let reads_wide = !plan.fused.is_empty()
+            || plan.pieces[0]
+                .steps
+                .iter()
+                .any(|s| matches!(s, Step::Batch(_)));
+        if reads_wide {
+            quote!(const WIDE: bool = false; #body)
+        } else {
+            body
+        }
     } else {
         let (kernel_params, args) = array_params(&plan.pieces[0].arrays, spec);
         let body = plan.piece_body(&ops, 0, &spec.output);
@@ -1384,13 +1394,25 @@ mod rt {
         let (q0, q2) = (g.input(Array::Q, 0), g.input(Array::Q, 2));
         let angles = [g.sin(q0), g.cos(q1), g.cos(q2), g.sin(q2), g.mul(q2, q0)];
         let batched = spec("angles", &args, Output::Vector(angles.to_vec()));
+        // Two functions too small for two copies: one with a fused product (it reads
+        // `WIDE`), one without (no `WIDE` to leave unused).
+        let small = [g.add(g.mul(q0, q2), q1), g.sub(q2, q0)];
+        let small_fused = spec("small_fused", &args, Output::Vector(small[..1].to_vec()));
+        let small_plain = spec("small_plain", &args, Output::Vector(small[1..].to_vec()));
         let split_text = emit_function(&g, &split).to_string();
         assert!(
             split_text.contains("part_3"),
             "split into at least 3 pieces"
         );
         let mut program = SCALAR_STUB.to_string();
-        for s in [&split, &whole, &matrix, &batched] {
+        for s in [
+            &split,
+            &whole,
+            &matrix,
+            &batched,
+            &small_fused,
+            &small_plain,
+        ] {
             let mut s = s.clone();
             s.scalar_trait = syn::parse_quote!(crate::rt::Scalar);
             program += &emit_function(&g, &s).to_string();
@@ -1414,7 +1436,9 @@ mod rt {
         .ok();
         main += "    let (m, s, w) = shaped(&q, &v, &tau);\n";
         main += "    for x in m.iter().flatten().chain([&s]).chain(&w) { println!(\"{x:?}\"); }\n";
-        main += "    for x in angles(&q, &v, &tau) { println!(\"{x:?}\"); }\n}\n";
+        main += "    for x in angles(&q, &v, &tau) { println!(\"{x:?}\"); }\n";
+        main += "    for x in small_fused(&q, &v, &tau) { println!(\"{x:?}\"); }\n";
+        main += "    for x in small_plain(&q, &v, &tau) { println!(\"{x:?}\"); }\n}\n";
         program += &main;
 
         let mut expected = g.eval(input, &chain);
@@ -1422,6 +1446,7 @@ mod rt {
         expected.extend(g.eval(input, &[chain[0], chain[1], odd[0], odd[1]]));
         expected.extend(g.eval(input, &odd[2..]));
         expected.extend(g.eval(input, &angles));
+        expected.extend(g.eval(input, &small));
 
         let dir = std::env::temp_dir().join(format!("dynamics-emit-{}", std::process::id()));
         std::fs::create_dir_all(&dir).expect("temp dir");

@@ -343,22 +343,45 @@ mod tests {
         })
     }
 
-    /// Every length from 0 to 9 (whole groups, padded last groups), bit for bit.
+    /// Every length from 0 to 10 (whole groups, padded last groups), bit for bit: the
+    /// SSE2 batch against `sin_cos`, and on x86-64 the AVX2 + FMA batch against
+    /// `sin_cos_mul_add` (or `None` on a CPU without AVX2 and FMA), including NaN, −0, a
+    /// large angle and one beyond 2⁵⁰.
     #[test]
     fn array_is_elementwise() {
-        fn check<const N: usize>(all: &[f64; 9]) {
+        fn check<const N: usize>(all: &[f64; 10]) {
             let x: [f64; N] = std::array::from_fn(|i| all[i]);
+            let bits = |(s, c): (f64, f64)| (s.to_bits(), c.to_bits());
             let (s, c) = super::sin_cos_array(&x);
             for i in 0..N {
-                let (s1, c1) = sin_cos(x[i]);
-                assert_eq!(
-                    (s[i].to_bits(), c[i].to_bits()),
-                    (s1.to_bits(), c1.to_bits()),
-                    "angle {i} of {N}"
-                );
+                assert_eq!(bits((s[i], c[i])), bits(sin_cos(x[i])), "angle {i} of {N}");
+            }
+            #[cfg(target_arch = "x86_64")]
+            match super::avx2::sin_cos_array(&x) {
+                Some((s, c)) => {
+                    for i in 0..N {
+                        assert_eq!(
+                            bits((s[i], c[i])),
+                            bits(super::sin_cos_mul_add(x[i])),
+                            "AVX2, angle {i} of {N}"
+                        );
+                    }
+                }
+                None => assert!(!crate::isa::wide()),
             }
         }
-        let x = [-3.0, -1.0, 0.1, PI / 4.0, 2.0, 1e5, f64::NAN, -0.0, 7.5];
+        let x = [
+            -3.0,
+            -1.0,
+            0.1,
+            PI / 4.0,
+            2.0,
+            1e5,
+            f64::NAN,
+            -0.0,
+            7.5,
+            1e16,
+        ];
         check::<0>(&x);
         check::<1>(&x);
         check::<2>(&x);
@@ -369,6 +392,7 @@ mod tests {
         check::<7>(&x);
         check::<8>(&x);
         check::<9>(&x);
+        check::<10>(&x);
     }
 
     #[test]

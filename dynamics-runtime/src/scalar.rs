@@ -207,7 +207,8 @@ mod tests {
     use super::Scalar;
 
     /// 0.1 · 10 − 1 is 0 with two roundings and 5.55e-17 with one: `mul_add` fuses only
-    /// when the build targets FMA hardware.
+    /// when the build targets FMA hardware, `mul_add_for::<true>` (the AVX2 + FMA kernels')
+    /// always.
     #[test]
     fn mul_add_fuses_only_when_built_for_fma() {
         let (a, b, c) = (0.1_f64, 10.0, -1.0);
@@ -224,6 +225,15 @@ mod tests {
         assert_eq!(
             <f64 as Scalar>::mul_add(a, b, c).to_bits(),
             expected.to_bits()
+        );
+        // The kernels' copies: the baseline one as `mul_add`, the wide one always fused.
+        assert_eq!(
+            <f64 as Scalar>::mul_add_for::<false>(a, b, c).to_bits(),
+            expected.to_bits()
+        );
+        assert_eq!(
+            <f64 as Scalar>::mul_add_for::<true>(a, b, c).to_bits(),
+            f64::mul_add(a, b, c).to_bits()
         );
     }
 

@@ -19,7 +19,8 @@ use core::arch::x86_64::{
 };
 
 /// Sines and cosines of N angles, four at a time, the last group padded with zeros: each
-/// lane bit for bit [`super::sin_cos_mul_add`]. `None` when this CPU lacks AVX2 or FMA
+/// lane bit for bit [`super::sin_cos_mul_add`] (tested with the SSE2 batch, in
+/// `fast_trig`'s `array_is_elementwise`). `None` when this CPU lacks AVX2 or FMA
 /// (or [`crate::isa`] is pinned to the baseline); the generated kernels call it only from
 /// their AVX2 + FMA copy, where it is always `Some`.
 #[inline]
@@ -112,55 +113,5 @@ unsafe fn sin_cos_x4(x: [f64; 4]) -> ([f64; 4], [f64; 4]) {
             core::mem::transmute::<__m256d, [f64; 4]>(_mm256_castsi256_pd(sin)),
             core::mem::transmute::<__m256d, [f64; 4]>(_mm256_castsi256_pd(cos)),
         )
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use std::f64::consts::PI;
-
-    /// Every lane of every length 0–9 is bit for bit `sin_cos_mul_add` (or `None` without
-    /// AVX2 and FMA), including NaN, −0, a large angle and one beyond 2⁵⁰.
-    #[test]
-    fn lanes_are_sin_cos_mul_add() {
-        fn check<const N: usize>(all: &[f64; 10]) {
-            let x: [f64; N] = std::array::from_fn(|i| all[i]);
-            let Some((s, c)) = super::sin_cos_array(&x) else {
-                assert!(!crate::isa::wide());
-                return;
-            };
-            for i in 0..N {
-                let (s1, c1) = super::super::sin_cos_mul_add(x[i]);
-                assert_eq!(
-                    (s[i].to_bits(), c[i].to_bits()),
-                    (s1.to_bits(), c1.to_bits()),
-                    "angle {i} of {N}: {}",
-                    x[i]
-                );
-            }
-        }
-        let x = [
-            -3.0,
-            -1.0,
-            0.1,
-            PI / 4.0,
-            2.0,
-            1e5,
-            f64::NAN,
-            -0.0,
-            7.5,
-            1e16,
-        ];
-        check::<0>(&x);
-        check::<1>(&x);
-        check::<2>(&x);
-        check::<3>(&x);
-        check::<4>(&x);
-        check::<5>(&x);
-        check::<6>(&x);
-        check::<7>(&x);
-        check::<8>(&x);
-        check::<9>(&x);
-        check::<10>(&x);
     }
 }
