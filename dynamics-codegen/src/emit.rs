@@ -259,6 +259,9 @@ pub struct FunctionSpec {
     pub output: Output,
     /// Split into pieces when more nodes than this are live (see the module docs).
     pub split_threshold: usize,
+    /// Emit the AVX2 + FMA copy and the run-time choice where worth it (the default), or
+    /// the baseline copy alone (`isa: baseline;`).
+    pub dispatch: bool,
 }
 
 impl FunctionSpec {
@@ -274,6 +277,7 @@ impl FunctionSpec {
             args,
             output,
             split_threshold: DEFAULT_SPLIT_THRESHOLD,
+            dispatch: true,
         }
     }
 }
@@ -312,18 +316,8 @@ pub fn emit_function(graph: &Graph, spec: &FunctionSpec) -> TokenStream {
 
     let body = if plan.pieces.len() > 1 {
         plan.chained_pieces(&ops, spec)
-    } else if !worth_dispatching(&graph.op_count(&outputs)) {
-        let body = plan.piece_body(&ops, 0, &spec.output);
-        let reads_wide = !plan.fused.is_empty()
-            || plan.pieces[0]
-                .steps
-                .iter()
-                .any(|s| matches!(s, Step::Batch(_)));
-        if reads_wide {
-            quote!(const WIDE: bool = false; #body)
-        } else {
-            body
-        }
+    } else if !spec.dispatch || !worth_dispatching(&graph.op_count(&outputs)) {
+        plan.baseline_body(&ops, 0, &spec.output)
     } else {
         let (kernel_params, args) = array_params(&plan.pieces[0].arrays, spec);
         let body = plan.piece_body(&ops, 0, &spec.output);
@@ -599,8 +593,25 @@ impl Plan {
         quote!(#(#stmts)* #result)
     }
 
+    /// [`Plan::piece_body`] as the baseline copy alone: after `const WIDE: bool = false;`
+    /// when a fused product or a sine-cosine batch reads it.
+    fn baseline_body(&self, ops: &[Op], p: usize, output: &Output) -> TokenStream {
+        let body = self.piece_body(ops, p, output);
+        let reads_wide = self.pieces[p].steps.iter().any(|s| match s {
+            Step::Batch(_) => true,
+            Step::One(n) => self.fused.contains_key(n),
+            Step::SinCos { .. } => false,
+        });
+        if reads_wide {
+            quote!(const WIDE: bool = false; #body)
+        } else {
+            body
+        }
+    }
+
     /// The body of a split function: the pieces as nested kernels, then their chain, each
-    /// piece run by `T::run_piece`.
+    /// piece run by `T::run_piece` (or, with `spec.dispatch` off, the baseline copies as
+    /// `#[inline(never)]` functions called in turn).
     fn chained_pieces(&self, ops: &[Op], spec: &FunctionSpec) -> TokenStream {
         let trait_ = &spec.scalar_trait;
         let n = self.pieces.len();
@@ -624,21 +635,33 @@ impl Plan {
                 None => spec.output.ty(),
             };
             let doc = format!(" Piece {} of {n}.", p + 1);
-            let body = self.piece_body(ops, p, &spec.output);
-            fns.push(quote! {
-                #[doc = #doc]
-                #[inline(always)]
-                fn #part<T: #trait_, const WIDE: bool>(#(#params),*) -> #ret {
-                    #body
+            let run = if spec.dispatch {
+                let body = self.piece_body(ops, p, &spec.output);
+                fns.push(quote! {
+                    #[doc = #doc]
+                    #[inline(always)]
+                    fn #part<T: #trait_, const WIDE: bool>(#(#params),*) -> #ret {
+                        #body
+                    }
+                });
+                quote! {
+                    T::run_piece(
+                        #[inline(always)]
+                        || #part::<T, true>(#(#args),*),
+                        #[inline(always)]
+                        || #part::<T, false>(#(#args),*),
+                    )
                 }
-            });
-            let run = quote! {
-                T::run_piece(
-                    #[inline(always)]
-                    || #part::<T, true>(#(#args),*),
-                    #[inline(always)]
-                    || #part::<T, false>(#(#args),*),
-                )
+            } else {
+                let body = self.baseline_body(ops, p, &spec.output);
+                fns.push(quote! {
+                    #[doc = #doc]
+                    #[inline(never)]
+                    fn #part<T: #trait_>(#(#params),*) -> #ret {
+                        #body
+                    }
+                });
+                quote!(#part(#(#args),*))
             };
             if p + 1 < n {
                 let next = format_ident!("carry_{}", p + 1);
@@ -1296,6 +1319,13 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
         )));
         syn::parse_str::<syn::File>(&text).expect("pretty text parses again");
 
+        s.dispatch = false; // one copy: the pieces as functions of their own, called in turn
+        let one = pretty(emit_function(&g, &s));
+        assert_eq!(one.matches("#[inline(never)]").count(), pieces, "{one}");
+        assert!(one.contains("fn part_1<T: Scalar>("), "{one}");
+        assert!(one.contains("let carry_1 = part_1(q, v);"), "{one}");
+        assert!(!one.contains("run_piece"), "{one}");
+
         s.split_threshold = live; // exactly at the threshold: not split
         assert!(!pretty(emit_function(&g, &s)).contains("fn part_"));
     }
@@ -1404,6 +1434,12 @@ mod rt {
             split_text.contains("part_3"),
             "split into at least 3 pieces"
         );
+        let mut split_one_copy = split.clone();
+        split_one_copy.name = quote::format_ident!("split_one_copy");
+        split_one_copy.dispatch = false;
+        let mut whole_one_copy = whole.clone();
+        whole_one_copy.name = quote::format_ident!("whole_one_copy");
+        whole_one_copy.dispatch = false;
         let mut program = SCALAR_STUB.to_string();
         for s in [
             &split,
@@ -1412,6 +1448,8 @@ mod rt {
             &batched,
             &small_fused,
             &small_plain,
+            &split_one_copy,
+            &whole_one_copy,
         ] {
             let mut s = s.clone();
             s.scalar_trait = syn::parse_quote!(crate::rt::Scalar);
@@ -1438,7 +1476,9 @@ mod rt {
         main += "    for x in m.iter().flatten().chain([&s]).chain(&w) { println!(\"{x:?}\"); }\n";
         main += "    for x in angles(&q, &v, &tau) { println!(\"{x:?}\"); }\n";
         main += "    for x in small_fused(&q, &v, &tau) { println!(\"{x:?}\"); }\n";
-        main += "    for x in small_plain(&q, &v, &tau) { println!(\"{x:?}\"); }\n}\n";
+        main += "    for x in small_plain(&q, &v, &tau) { println!(\"{x:?}\"); }\n";
+        main += "    for x in split_one_copy(&q, &v, &tau) { println!(\"{x:?}\"); }\n";
+        main += "    for x in whole_one_copy(&q, &v, &tau) { println!(\"{x:?}\"); }\n}\n";
         program += &main;
 
         let mut expected = g.eval(input, &chain);
@@ -1447,6 +1487,8 @@ mod rt {
         expected.extend(g.eval(input, &odd[2..]));
         expected.extend(g.eval(input, &angles));
         expected.extend(g.eval(input, &small));
+        expected.extend(g.eval(input, &chain));
+        expected.extend(g.eval(input, &chain));
 
         let dir = std::env::temp_dir().join(format!("dynamics-emit-{}", std::process::id()));
         std::fs::create_dir_all(&dir).expect("temp dir");

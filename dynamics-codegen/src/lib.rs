@@ -43,7 +43,12 @@ pub fn compile(mut mechanism: syntax::Mechanism, manifest_dir: &Path) -> syn::Re
         .source_files
         .extend(source.map(|p| p.display().to_string()));
     let scalar: syn::Path = syn::parse_quote!(::dynamics_runtime::Scalar);
-    let functions = expand::expand(&model, scalar);
+    let mut functions = expand::expand(&model, scalar);
+    if mechanism.isa == Some(syntax::Isa::Baseline) {
+        for f in &mut functions {
+            f.spec.dispatch = false;
+        }
+    }
     Ok(Compiled { model, functions })
 }
 
@@ -103,6 +108,33 @@ pub fn expand_mechanism(input: TokenStream) -> TokenStream {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `isa: baseline;` leaves out the AVX2 + FMA copies and the run-time choice.
+    #[test]
+    fn isa_baseline_emits_one_copy() {
+        let text = |isa: TokenStream| {
+            let mechanism: syntax::Mechanism = syn::parse2(quote! {
+                pub struct Arm;
+                #isa
+                gravity: [0.0, -9.81, 0.0];
+                body upper { mass: 1.0, com: [0.2, 0.0, 0.0], shape: point }
+                body lower { mass: 0.5, com: [0.2, 0.0, 0.0], shape: point }
+                joint shoulder: revolute(ground -> upper) { axis: z }
+                joint elbow: revolute(upper -> lower) { axis: z, at: [0.4, 0.0, 0.0] }
+            })
+            .expect("parses");
+            let compiled = compile(mechanism, Path::new(".")).expect("compiles");
+            to_tokens(&compiled).to_string()
+        };
+        let two = text(quote!());
+        let one = text(quote!(isa: baseline;));
+        assert!(two.contains("run_kernel"), "{two}");
+        assert!(
+            !one.contains("run_kernel") && !one.contains("run_piece"),
+            "{one}"
+        );
+        assert!(!one.contains("kernel :: < T , true >"), "{one}");
+    }
 
     #[test]
     fn doc_comments_reach_the_generated_type() {

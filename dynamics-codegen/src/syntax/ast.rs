@@ -146,6 +146,19 @@ pub struct Mechanism {
     pub constraints: Vec<Constraint>,
     /// `force_analysis: planar;` or `spatial;` (planar when absent).
     pub analysis: Option<(AnalysisPlane, Span)>,
+    /// `isa: dispatch;` or `baseline;` (dispatch when absent).
+    pub isa: Option<Isa>,
+}
+
+/// Which copies of each generated function to emit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Isa {
+    /// Two: one for the crate's target and one for AVX2 + FMA, chosen at run time (the
+    /// default).
+    Dispatch,
+    /// The crate's target only: half the machine code and LLVM time, SSE2 speed on
+    /// baseline x86-64.
+    Baseline,
 }
 
 /// How many balance equations each body contributes to the force analysis.

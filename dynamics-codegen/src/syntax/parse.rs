@@ -28,6 +28,7 @@ impl Parse for Mechanism {
             loads: Vec::new(),
             constraints: Vec::new(),
             analysis: None,
+            isa: None,
         };
         let mut floating_base: Option<bool> = None;
         while !input.is_empty() {
@@ -88,12 +89,25 @@ impl Parse for Mechanism {
                             };
                             mechanism.analysis = Some((kind, plane.span()));
                         }
+                        "isa" => {
+                            let isa: Ident = input.parse()?;
+                            mechanism.isa = Some(match isa.to_string().as_str() {
+                                "dispatch" => Isa::Dispatch,
+                                "baseline" => Isa::Baseline,
+                                other => {
+                                    return Err(syn::Error::new(
+                                        isa.span(),
+                                        format!("unknown isa `{other}`; expected dispatch (two copies, chosen at run time) or baseline (the crate's target only)"),
+                                    ))
+                                }
+                            });
+                        }
                         _ => {
                             return Err(syn::Error::new(
                                 keyword.span(),
                                 format!(
                                     "unknown setting `{setting}`; expected one of gravity, outputs, \
-                                     parameters, allow, urdf, floating_base, force_analysis (or `body`, `joint`, `load`, \
+                                     parameters, allow, urdf, floating_base, force_analysis, isa (or `body`, `joint`, `load`, \
                                      `constraint`)"
                                 ),
                             ))
@@ -780,6 +794,28 @@ mod tests {
         assert_eq!(m.joints[0].parent.text, "ground");
         assert_eq!(m.loads[0].kind, LoadKind::Force);
         assert_eq!(m.outputs.as_ref().map(Vec::len), Some(2));
+    }
+
+    #[test]
+    fn isa_setting_takes_dispatch_or_baseline() {
+        let with = |isa: proc_macro2::TokenStream| {
+            parse(quote! {
+                struct P;
+                isa: #isa;
+                body b { mass: 1.0, shape: point }
+                joint j: prismatic(ground -> b) { axis: x }
+            })
+        };
+        assert_eq!(
+            with(quote!(baseline)).expect("parses").isa,
+            Some(Isa::Baseline)
+        );
+        assert_eq!(
+            with(quote!(dispatch)).expect("parses").isa,
+            Some(Isa::Dispatch)
+        );
+        let e = with(quote!(avx512)).expect_err("unknown");
+        assert!(e.to_string().contains("unknown isa `avx512`"), "{e}");
     }
 
     #[test]
