@@ -5,6 +5,8 @@
 #   bash models/tools/compile_cost.sh --chains "5 10"       # other chains
 #   bash models/tools/compile_cost.sh --repeat 1            # one build each (default 3)
 #   bash models/tools/compile_cost.sh --keep                # keep the temporary folder
+#   bash models/tools/compile_cost.sh --isa baseline        # declared with `isa: baseline;`
+#                                                           # (one copy of each function)
 #
 # In a fresh folder under /tmp it extracts the committed toolkit (`git archive HEAD`: the
 # workspace manifest and lock file, dynamics-runtime, dynamics-macros, dynamics-codegen; so
@@ -36,11 +38,17 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 CHAINS="5 10 20 30"
 KEEP=0
 REPEAT=3
+ISA=""
 while [ $# -gt 0 ]; do
     case "$1" in
         --chains) CHAINS="$2"; shift 2 ;;
         --repeat) REPEAT="$2"; shift 2 ;;
         --keep) KEEP=1; shift ;;
+        --isa)
+            case "$2" in
+                dispatch|baseline) ISA="$2"; shift 2 ;;
+                *) echo "--isa takes dispatch or baseline, not: $2" >&2; exit 2 ;;
+            esac ;;
         -h|--help) sed -n '2,/^set /{/^set /d;p}' "${BASH_SOURCE[0]}"; exit 0 ;;
         *) echo "unknown argument: $1" >&2; exit 2 ;;
     esac
@@ -50,7 +58,7 @@ WORK=$(mktemp -d /tmp/compile-cost.XXXXXX)
 if [ "$KEEP" = 0 ]; then trap 'rm -rf "$WORK"' EXIT; fi
 export CARGO_TARGET_DIR="$WORK/target"
 COMMIT=$(git -C "$ROOT" rev-parse --short HEAD)
-echo "working in $WORK, toolkit at commit $COMMIT"
+echo "working in $WORK, toolkit at commit $COMMIT${ISA:+, every mechanism declared with isa: $ISA;}"
 git -C "$ROOT" archive HEAD Cargo.toml Cargo.lock dynamics-runtime dynamics-macros dynamics-codegen \
     | tar -x -C "$WORK"
 
@@ -62,6 +70,7 @@ chain_declaration() {
     echo "mechanism! {"
     echo "    /// A planar chain of $n links (as models::chains), every output."
     echo "    pub struct Chain$n;"
+    if [ -n "$ISA" ]; then echo "    isa: $ISA;"; fi
     echo "    gravity: [0.0, -9.81, 0.0];"
     for k in $(seq 1 "$n"); do
         echo "    body link$k { mass: 1.0, com: [0.15, 0.0, 0.0], shape: rod(length: 0.3, axis: x) }"
@@ -133,6 +142,11 @@ for n in $CHAINS; do
     CRATES+=("chain$n:Chain$n:")
 done
 git -C "$ROOT" show HEAD:models/src/quadruped.rs > "$WORK/declarations/quadruped.rs"
+if [ -n "$ISA" ]; then
+    sed -i "s/^\( *\)pub struct Quadruped;/&\n\1isa: $ISA;/" "$WORK/declarations/quadruped.rs"
+    grep -q "isa: $ISA;" "$WORK/declarations/quadruped.rs" ||
+        { echo "could not add isa: $ISA; to the quadruped" >&2; exit 1; }
+fi
 CRATES+=("quadruped:Quadruped:, &l")
 
 MEMBERS='"stub", "expansion-time"'
