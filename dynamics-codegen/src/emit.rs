@@ -66,7 +66,9 @@
 //! and never instantiate the other. A function with fewer than [`MIN_DISPATCHED_OPS`]
 //! operations and at most one angle's sine and cosine is emitted as the baseline body
 //! alone, after `const WIDE: bool = false;` if the body reads it: the choice would cost
-//! more than it saves.
+//! more than it saves. So is every function of a spec with [`FunctionSpec::dispatch`] off
+//! (a mechanism declared with `isa: baseline;`), its pieces then `#[inline(never)]`
+//! functions called in turn.
 //!
 //! # Splitting long functions
 //!

@@ -156,8 +156,7 @@ pub enum Isa {
     /// Two: one for the crate's target and one for AVX2 + FMA, chosen at run time (the
     /// default).
     Dispatch,
-    /// The crate's target only: half the machine code and LLVM time, SSE2 speed on
-    /// baseline x86-64.
+    /// The crate's target only: half the machine code, SSE2 speed on baseline x86-64.
     Baseline,
 }
 
