@@ -121,7 +121,7 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 const LANES: usize = if cfg!(target_feature = "avx") { 4 } else { 2 };
 
 /// [`sin_cos`] of N angles at once, bit for bit the same values. Written as a loop over a
-/// multiple of [`LANES`] independent angles, which LLVM's loop vectorizer turns into SIMD
+/// multiple of `LANES` independent angles, which LLVM's loop vectorizer turns into SIMD
 /// code (two angles per SSE2 instruction, four per AVX one); the last N mod LANES angles go
 /// through one more such group, padded with zeros (measured with AVX: seven angles in 47 ns
 /// this way, 73 ns with the last three done one at a time; with SSE2 an odd last angle costs

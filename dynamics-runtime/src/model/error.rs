@@ -32,9 +32,9 @@ pub enum ModelError {
         row: usize,
         /// Column.
         col: usize,
-        /// I[row][col].
+        /// `I[row][col]`.
         upper: f64,
-        /// I[col][row].
+        /// `I[col][row]`.
         lower: f64,
     },
     /// I_G has a negative principal moment.
