@@ -13,6 +13,7 @@
 //! (`Graph::longest_chain`).
 
 use dynamics_codegen::{compile, syntax, to_tokens, Compiled};
+use std::io::{ErrorKind, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -128,17 +129,20 @@ fn run(options: &Options) -> Result<(), String> {
                 .collect::<Vec<_>>()
                 .join("\n")
         })?;
-        if options.ops_only {
-            print!("{}", op_table(&compiled));
-            continue;
+        let text = if options.ops_only {
+            op_table(&compiled)
+        } else {
+            let file: syn::File =
+                syn::parse2(to_tokens(&compiled)).map_err(|e| format!("internal: {e}"))?;
+            format!(
+                "// {}\n{}\n",
+                op_table(&compiled).trim_end().replace('\n', "\n// "),
+                prettyplease::unparse(&file)
+            )
+        };
+        if !write_out(&text)? {
+            return Ok(());
         }
-        let file: syn::File =
-            syn::parse2(to_tokens(&compiled)).map_err(|e| format!("internal: {e}"))?;
-        println!(
-            "// {}",
-            op_table(&compiled).trim_end().replace('\n', "\n// ")
-        );
-        println!("{}", prettyplease::unparse(&file));
     }
     if any {
         Ok(())
@@ -147,6 +151,17 @@ fn run(options: &Options) -> Result<(), String> {
             "no matching mechanism! in {}",
             options.file.display()
         ))
+    }
+}
+
+/// Writes `text` to stdout: `Ok(false)` when the reader has stopped reading
+/// (`dynamics-codegen f.rs | head`), which ends the output quietly; an error message for any
+/// other failure to write.
+fn write_out(text: &str) -> Result<bool, String> {
+    match std::io::stdout().lock().write_all(text.as_bytes()) {
+        Ok(()) => Ok(true),
+        Err(e) if e.kind() == ErrorKind::BrokenPipe => Ok(false),
+        Err(e) => Err(format!("cannot write the output: {e}")),
     }
 }
 
