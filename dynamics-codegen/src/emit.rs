@@ -303,7 +303,8 @@ pub fn emit_function(graph: &Graph, spec: &FunctionSpec) -> TokenStream {
     let name = &spec.name;
     let vis = &spec.vis;
     let ret = spec.output.ty();
-    let docs = doc_attrs(&spec.doc, &graph.op_count(&outputs));
+    let count = graph.op_count(&outputs);
+    let docs = doc_attrs(&spec.doc, &count);
 
     let used = |array: Array| plan.pieces.iter().any(|p| p.arrays.contains(&array));
     let params = spec.args.iter().map(|arg| {
@@ -318,7 +319,7 @@ pub fn emit_function(graph: &Graph, spec: &FunctionSpec) -> TokenStream {
 
     let body = if plan.pieces.len() > 1 {
         plan.chained_pieces(&ops, spec)
-    } else if !spec.dispatch || !worth_dispatching(&graph.op_count(&outputs)) {
+    } else if !spec.dispatch || !worth_dispatching(&count) {
         plan.baseline_body(&ops, 0, &spec.output)
     } else {
         let (kernel_params, args) = array_params(&plan.pieces[0].arrays, spec);
