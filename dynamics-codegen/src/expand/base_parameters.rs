@@ -44,9 +44,10 @@ pub fn regroup(
 
 /// The most operations (the declared function's, times the number of bodies) for which
 /// [`regroup`] expands every candidate; above it, it takes inverse dynamics' choice, computed
-/// incrementally ([`super::rnea::base_parameters`]). The search finds fewer operations (UR5
-/// Coriolis matrix 874 against 1154; quadruped 3684 against 4143) but expands the function
-/// once per candidate. Measured with the command-line compiler at opt-level 0 (as the proc
+/// incrementally ([`super::rnea::base_parameters`]). The search finds fewer operations (with
+/// the Coriolis matrix's first, dense-B form: UR5 874 against 1154; quadruped 3684 against
+/// 4143; the quadruped's present form, 3309 operations, is under the budget) but expands the
+/// function once per candidate. Measured with the command-line compiler at opt-level 0 (as the proc
 /// macro runs inside `cargo build`), whole files with every output: searching everything,
 /// the quadruped took 1.9 s and a 30-link chain 9.7 s; with this budget 0.64 s and 0.95 s
 /// (0.3 s and 0.5 s before base parameters reached beyond inverse dynamics).

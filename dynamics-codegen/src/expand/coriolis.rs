@@ -13,107 +13,74 @@
 //! C_ji = (I^C_j s_j)ᵀ ṡ_i + (B^C_jᵀ s_j)ᵀ s_i      i a strict ancestor of j
 //! ```
 //!
-//! Spatial inner products do not depend on the frame, so each column's forces are carried
-//! up the tree like the mass matrix's. Six-dimensional quantities are linear first:
-//! motion [v_P; ω], force [F; M_P].
+//! B is never formed as a 6×6 matrix. Its symmetric part is ½ İ, the rate of the inertia
+//! in a fixed frame, (v×*) I − I (v×): an inertia of mass 0 with first moment
+//! ḣ = m v_P + ω × h and rotational part İ_P = ω̂ I_P − I_P ω̂ − (h v_Pᵀ + v_P hᵀ) + 2 (v_P·h) 1.
+//! Its skew part is ½ (I v)×̄ (f×̄ is skew), and Xᵀ (f×̄) X = (Xᵀ f)×̄. So
+//!
+//! ```text
+//! B^C_j = ½ İ^C_j + ½ (h^C_j)×̄,    h^C_j = Σ I_i v_i (the subtree's momentum)
+//! B^C_j s = ½ (İ^C_j s + s ×* h^C_j),    B^C_jᵀ s = ½ (İ^C_j s − s ×* h^C_j)
+//! ```
+//!
+//! with İ^C carried up the tree like the composite inertias and h^C like a wrench, which
+//! costs a fraction of carrying dense 6×6 matrices. The halves are taken on the constant
+//! inertias (½ I_i), where they fold away. Spatial inner products do not depend on the
+//! frame, so each column's forces are carried up the tree like the mass matrix's.
+//! Six-dimensional quantities are linear first: motion [v_P; ω], force [F; M_P].
 
+use super::aba::symmetric;
 use super::crba::{composite_inertias, motion_subspace};
 use super::geometry::{self, BodyInertia, JointTransform};
 use crate::model::Model;
-use crate::sym::{Graph, Mat3, Node, Vec3};
-
-/// A 6×6 matrix as 3×3 blocks [[top-left, top-right], [bottom-left, bottom-right]].
-#[derive(Clone, Copy)]
-struct Mat6([[Mat3; 2]; 2]);
+use crate::sym::{Graph, Node, Vec3};
 
 /// A spatial vector [linear; angular].
 type Six = (Vec3, Vec3);
 
-impl Mat6 {
-    fn add(self, g: &Graph, o: Mat6) -> Mat6 {
-        let b = |i: usize, j: usize| self.0[i][j].add(g, o.0[i][j]);
-        Mat6([[b(0, 0), b(0, 1)], [b(1, 0), b(1, 1)]])
-    }
-
-    fn scale(self, g: &Graph, s: Node) -> Mat6 {
-        let b = |i: usize, j: usize| self.0[i][j].scale(g, s);
-        Mat6([[b(0, 0), b(0, 1)], [b(1, 0), b(1, 1)]])
-    }
-
-    fn mul(self, g: &Graph, o: Mat6) -> Mat6 {
-        let b = |i: usize, j: usize| {
-            self.0[i][0]
-                .mul(g, o.0[0][j])
-                .add(g, self.0[i][1].mul(g, o.0[1][j]))
-        };
-        Mat6([[b(0, 0), b(0, 1)], [b(1, 0), b(1, 1)]])
-    }
-
-    fn transpose(self) -> Mat6 {
-        let b = |i: usize, j: usize| self.0[j][i].transpose();
-        Mat6([[b(0, 0), b(0, 1)], [b(1, 0), b(1, 1)]])
-    }
-
-    fn apply(self, g: &Graph, (l, a): Six) -> Six {
-        let row = |i: usize| {
-            self.0[i][0]
-                .mul_vec(g, l)
-                .add(g, self.0[i][1].mul_vec(g, a))
-        };
-        (row(0), row(1))
-    }
+/// The wrench I s of an inertia (m, h, I_P) along the motion s = [v; ω]:
+/// [m v + ω × h; h × v + I_P ω].
+fn inertia_times(g: &Graph, i: &BodyInertia, (v, w): Six) -> Six {
+    (
+        v.scale(g, i.mass).add(g, w.cross(g, i.first_moment)),
+        i.first_moment
+            .cross(g, v)
+            .add(g, i.inertia_about_origin.mul_vec(g, w)),
+    )
 }
 
-/// The spatial inertia about P: [[m 1, −ĥ], [ĥ, I_P]].
-fn inertia_matrix(g: &Graph, i: &BodyInertia) -> Mat6 {
-    let h_hat = i.first_moment.cross_matrix(g);
-    Mat6([
-        [
-            Mat3::identity(g).scale(g, i.mass),
-            h_hat.scale(g, g.constant(-1.0)),
-        ],
-        [h_hat, i.inertia_about_origin],
-    ])
-}
-
-/// v× for v = [v_l; ω]: [[ω̂, v̂_l], [0, ω̂]].
-fn motion_cross((v, w): Six, g: &Graph) -> Mat6 {
-    Mat6([
-        [w.cross_matrix(g), v.cross_matrix(g)],
-        [Mat3::zero(g), w.cross_matrix(g)],
-    ])
-}
-
-/// v×* for v = [v_l; ω]: [[ω̂, 0], [v̂_l, ω̂]].
-fn force_cross((v, w): Six, g: &Graph) -> Mat6 {
-    Mat6([
-        [w.cross_matrix(g), Mat3::zero(g)],
-        [v.cross_matrix(g), w.cross_matrix(g)],
-    ])
-}
-
-/// f×̄ for f = [F; M], defined by (f×̄) v = v ×* f: [[0, −F̂], [−F̂, −M̂]].
-fn force_bar((f, m): Six, g: &Graph) -> Mat6 {
-    let minus = g.constant(-1.0);
-    let f_hat = f.cross_matrix(g).scale(g, minus);
-    Mat6([
-        [Mat3::zero(g), f_hat],
-        [f_hat, m.cross_matrix(g).scale(g, minus)],
-    ])
-}
-
-/// The motion transform from parent to body coordinates, X = [[Eᵀ, −Eᵀ r̂], [0, Eᵀ]].
-fn motion_transform(g: &Graph, t: &JointTransform) -> Mat6 {
-    let et = t.rotation_to_parent.transpose();
-    let minus = g.constant(-1.0);
-    Mat6([
-        [
-            et,
-            et.mul(g, t.origin_in_parent.cross_matrix(g))
-                .scale(g, minus),
-        ],
-        [Mat3::zero(g), et],
-    ])
+/// Half of body i's B terms, in its frame: ½ İ_i as an inertia of mass 0 and the momentum
+/// ½ I_i v_i (whose linear part is also ½ ḣ_i).
+fn halved_b_terms(g: &Graph, inertia: &BodyInertia, twist: Six) -> (BodyInertia, Six) {
+    let half = g.constant(0.5);
+    let halved = BodyInertia {
+        mass: g.mul(inertia.mass, half),
+        first_moment: inertia.first_moment.scale(g, half),
+        inertia_about_origin: inertia.inertia_about_origin.scale(g, half),
+        mass_centre: None,
+    };
+    let momentum = inertia_times(g, &halved, twist);
+    let (v, w) = twist;
+    let h = halved.first_moment;
+    let rotating = w.cross_matrix(g).mul(g, halved.inertia_about_origin);
+    let v_dot_h = v.dot(g, h);
+    let rotational_rate = symmetric(|r, c| {
+        let commutator = g.add(rotating.get(r, c), rotating.get(c, r));
+        let shift = g.add(g.mul(h.get(r), v.get(c)), g.mul(v.get(r), h.get(c)));
+        let entry = g.sub(commutator, shift);
+        if r == c {
+            g.add(entry, g.add(v_dot_h, v_dot_h))
+        } else {
+            entry
+        }
+    });
+    let rate = BodyInertia {
+        mass: g.zero(),
+        first_moment: momentum.0,
+        inertia_about_origin: rotational_rate,
+        mass_centre: None,
+    };
+    (rate, momentum)
 }
 
 /// Spatial velocities of every body, in its own frame.
@@ -145,8 +112,14 @@ fn dot(g: &Graph, a: Six, b: Six) -> Node {
     g.add(a.0.dot(g, b.0), a.1.dot(g, b.1))
 }
 
+/// v × m for a motion m: [ω × m_v + v × m_ω; ω × m_ω].
 fn motion_cross_vector(g: &Graph, (v, w): Six, (mv, mw): Six) -> Six {
     (w.cross(g, mv).add(g, v.cross(g, mw)), w.cross(g, mw))
+}
+
+/// s ×* f for a force f: [ω × F; v × F + ω × M].
+fn force_cross_vector(g: &Graph, (v, w): Six, (f, m): Six) -> Six {
+    (w.cross(g, f), v.cross(g, f).add(g, w.cross(g, m)))
 }
 
 /// C(q, q̇), an `nv × nv` matrix of nodes.
@@ -159,34 +132,19 @@ pub fn coriolis_matrix(
 ) -> Vec<Vec<Node>> {
     let n = model.bodies.len();
     let twists = velocities(g, model, transforms, velocity);
-    let half = g.constant(0.5);
-    let mut b_composite: Vec<Mat6> = (0..n)
-        .map(|i| {
-            let inertia = inertia_matrix(g, &inertias[i]);
-            let momentum = inertia.apply(g, twists[i]);
-            force_cross(twists[i], g)
-                .mul(g, inertia)
-                .add(g, force_bar(momentum, g))
-                .add(
-                    g,
-                    inertia
-                        .mul(g, motion_cross(twists[i], g))
-                        .scale(g, g.constant(-1.0)),
-                )
-                .scale(g, half)
-        })
-        .collect();
+    let (rates, mut momenta): (Vec<BodyInertia>, Vec<Six>) = (0..n)
+        .map(|i| halved_b_terms(g, &inertias[i], twists[i]))
+        .unzip();
+    // ½ İ^C and ½ h^C: the subtree sums, each in its body's frame.
+    let rate_composite = composite_inertias(g, model, transforms, &rates);
     for i in (0..n).rev() {
         if let Some(p) = model.bodies[i].parent {
-            let x = motion_transform(g, &transforms[i]);
-            let moved = x.transpose().mul(g, b_composite[i].mul(g, x));
-            b_composite[p] = b_composite[p].add(g, moved);
+            let (f, m) = momenta[i];
+            let moved = geometry::wrench_to_parent(g, &transforms[i], f, m);
+            momenta[p] = add6(g, momenta[p], moved);
         }
     }
-    let i_composite: Vec<Mat6> = composite_inertias(g, model, transforms, inertias)
-        .iter()
-        .map(|c| inertia_matrix(g, c))
-        .collect();
+    let i_composite = composite_inertias(g, model, transforms, inertias);
     let subspaces: Vec<Vec<Six>> = model
         .bodies
         .iter()
@@ -205,10 +163,18 @@ pub fn coriolis_matrix(
     for (j, body) in model.bodies.iter().enumerate() {
         for (col, &s_j) in subspaces[j].iter().enumerate() {
             let column = body.joint.idx_v + col;
-            let f1 = i_composite[j].apply(g, axis_rates[j][col]);
-            let mut f1 = add6(g, f1, b_composite[j].apply(g, s_j));
-            let mut f2 = i_composite[j].apply(g, s_j);
-            let mut f3 = b_composite[j].transpose().apply(g, s_j);
+            let symmetric_part = inertia_times(g, &rate_composite[j], s_j);
+            let skew_part = force_cross_vector(g, s_j, momenta[j]);
+            // B^C s and B^Cᵀ s.
+            let b_s = add6(g, symmetric_part, skew_part);
+            let bt_s = sub6(g, symmetric_part, skew_part);
+            let mut f1 = add6(
+                g,
+                inertia_times(g, &i_composite[j], axis_rates[j][col]),
+                b_s,
+            );
+            let mut f2 = inertia_times(g, &i_composite[j], s_j);
+            let mut f3 = bt_s;
             for (row_in_joint, &s_row) in subspaces[j].iter().enumerate() {
                 c[body.joint.idx_v + row_in_joint][column] = dot(g, s_row, f1);
             }
@@ -234,4 +200,8 @@ pub fn coriolis_matrix(
 
 fn add6(g: &Graph, a: Six, b: Six) -> Six {
     (a.0.add(g, b.0), a.1.add(g, b.1))
+}
+
+fn sub6(g: &Graph, a: Six, b: Six) -> Six {
+    (a.0.sub(g, b.0), a.1.sub(g, b.1))
 }
