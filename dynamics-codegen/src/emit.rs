@@ -73,9 +73,9 @@
 //!
 //! # Splitting long functions
 //!
-//! rustc's compile time grows roughly quadratically with the length of a function, so when
-//! more than [`FunctionSpec::split_threshold`] nodes are live the body is cut into pieces
-//! of about equal length. Each piece is a kernel of its own, nested inside the emitted
+//! rustc overflows its stack on very long functions in debug builds, and its compile time
+//! grows faster than the length, so a body of more than [`FunctionSpec::split_threshold`]
+//! statements is cut into pieces of about equal length. Each piece is a kernel of its own, nested inside the emitted
 //! function (so the emitted code stays a single item, usable at module level or in an
 //! `impl` block), run by `T::run_piece`, which keeps either copy out of line; the emitted
 //! function only chains them:
@@ -113,11 +113,15 @@ use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::{BTreeSet, HashMap};
 
-/// The default [`FunctionSpec::split_threshold`]: 1500 live nodes. Each piece also
-/// re-creates the constants and inputs it reads, so pieces come out somewhat longer; at this
-/// threshold they stay well below ~3000 `let`s, where rustc (LLVM's debug-info scopes, one
-/// per `let`, walked recursively) overflows its stack in debug builds.
-pub const DEFAULT_SPLIT_THRESHOLD: usize = 1500;
+/// The default [`FunctionSpec::split_threshold`]: 2400 statements. Each piece re-creates
+/// the constants and inputs it reads, so pieces come out somewhat longer; at this threshold
+/// they stay below ~3000 `let`s, where rustc (LLVM's debug-info scopes,
+/// one per `let`, walked recursively) overflows its stack in debug builds. Each cut costs
+/// at run time: the values crossing it go through memory, and the optimizer sees one piece
+/// at a time. The quadruped's Coriolis matrix, cut in three at the earlier threshold of
+/// 1500 live nodes, took 0.72 of the time whole (paired, `models/tools/generated_ab.sh`),
+/// and compiled no slower.
+pub const DEFAULT_SPLIT_THRESHOLD: usize = 2500;
 
 /// One argument of the emitted function: `name: &[T; len]`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -260,7 +264,8 @@ pub struct FunctionSpec {
     pub args: Vec<Arg>,
     /// The return value.
     pub output: Output,
-    /// Split into pieces when more nodes than this are live (see the module docs).
+    /// Split into pieces when the body would have more statements than this (see the
+    /// module docs).
     pub split_threshold: usize,
     /// Emit the AVX2 + FMA copy and the run-time choice where worth it (the default), or
     /// the baseline copy alone (`isa: baseline;`).
@@ -478,7 +483,9 @@ impl Plan {
         threshold: usize,
     ) -> Self {
         let steps = schedule(ops, live, outputs, &fused);
-        let n_pieces = live.count().div_ceil(threshold.max(1)).max(1);
+        // The inputs and constants read count too: the whole body's statements.
+        let leaves = live.nodes().filter(|n| ops[n.index()].is_leaf()).count();
+        let n_pieces = (steps.len() + leaves).div_ceil(threshold.max(1)).max(1);
         let per_piece = steps.len().div_ceil(n_pieces).max(1);
         let mut pieces: Vec<Piece> = steps
             .chunks(per_piece)
@@ -1360,16 +1367,21 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
     fn long_functions_are_split_into_pieces() {
         let g = Graph::new();
         let outputs = long_chain(&g, 200);
-        let live = g.live(&outputs).count();
         let mut s = spec(
             "chain",
             &[(Array::Q, 8), (Array::V, 3)],
             Output::Vector(outputs),
         );
+        s.split_threshold = usize::MAX;
+        let whole = pretty(emit_function(&g, &s));
+        let statements = whole
+            .lines()
+            .filter(|l| l.trim_start().starts_with("let "))
+            .count();
         s.split_threshold = 300;
         let text = pretty(emit_function(&g, &s));
-        let pieces = live.div_ceil(300);
-        assert!(pieces >= 3, "{live} live nodes");
+        let pieces = statements.div_ceil(300);
+        assert!(pieces >= 3, "{statements} statements");
         for p in 1..=pieces {
             assert!(
                 text.contains(&format!("fn part_{p}<T: Scalar, const WIDE: bool>")),
@@ -1395,8 +1407,10 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
         assert!(one.contains("let carry_1 = part_1(q, v);"), "{one}");
         assert!(!one.contains("run_piece"), "{one}");
 
-        s.split_threshold = live; // exactly at the threshold: not split
+        s.split_threshold = statements; // exactly at the threshold: not split
         assert!(!pretty(emit_function(&g, &s)).contains("fn part_"));
+        s.split_threshold = statements - 1;
+        assert!(pretty(emit_function(&g, &s)).contains("fn part_2"));
     }
 
     /// `Scalar` as the runtime defines it, reduced to what generated code uses.
