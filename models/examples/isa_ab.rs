@@ -15,60 +15,19 @@
 use dynamics_runtime::isa;
 use models::anchors::{Panda, Ur5};
 use models::quadruped::Quadruped;
-use std::hint::black_box;
-use std::time::Instant;
 
-const ROUNDS: usize = 41;
-const CALLS: usize = 20_000;
+#[path = "support/paired.rs"]
+mod paired;
 
 /// Times `f` over `states` with the baseline and the wide copies; prints one line.
-fn paired<S, R>(name: &str, states: &[S], f: impl Fn(&S) -> R) {
-    let (mut baseline, mut wide, mut ratio) = (Vec::new(), Vec::new(), Vec::new());
-    for round in 0..ROUNDS {
-        let mut ns = [0.0; 2];
-        for k in 0..2 {
-            let side = if round % 2 == 0 { k } else { 1 - k };
+fn both_copies<S, R>(name: &str, states: &[S], f: impl Fn(&S) -> R) {
+    let [baseline, wide, ratio] = paired::paired(
+        |side| {
             isa::choose(side == 1);
-            let start = Instant::now();
-            for c in 0..CALLS {
-                black_box(f(black_box(&states[c % states.len()])));
-            }
-            ns[side] = start.elapsed().as_nanos() as f64 / CALLS as f64;
-        }
-        baseline.push(ns[0]);
-        wide.push(ns[1]);
-        ratio.push(ns[1] / ns[0]);
-    }
-    println!(
-        "{name:<28} {:>9.1} {:>9.1} {:>10.3}",
-        median(baseline),
-        median(wide),
-        median(ratio)
+        },
+        |_, c| f(&states[c % states.len()]),
     );
-}
-
-fn median(mut x: Vec<f64>) -> f64 {
-    x.sort_by(f64::total_cmp);
-    x[x.len() / 2]
-}
-
-/// 20 states of uniform numbers in [−2, 2) (a fixed xorshift stream); the quadruped's
-/// foot loads zero, as in the comparison with Pinocchio.
-fn states<const NQ: usize, const NV: usize>() -> Vec<([f64; NQ], [f64; NV], [f64; NV])> {
-    let mut s = 0x9e37_79b9_7f4a_7c15_u64;
-    let mut next = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
-    };
-    (0..20)
-        .map(|_| {
-            let q = std::array::from_fn(|_| next());
-            let v = std::array::from_fn(|_| next());
-            (q, v, std::array::from_fn(|_| next()))
-        })
-        .collect()
+    println!("{name:<28} {baseline:>9.1} {wide:>9.1} {ratio:>10.3}");
 }
 
 fn main() {
@@ -87,47 +46,47 @@ fn main() {
         "function", "base ns", "wide ns", "wide/base"
     );
     if wanted("ur5") {
-        let s = states::<6, 6>();
-        paired("UR5 inverse_dynamics", &s, |(q, v, a)| {
+        let s = paired::states::<6, 6>(None);
+        both_copies("UR5 inverse_dynamics", &s, |(q, v, a)| {
             Ur5::inverse_dynamics(q, v, a)
         });
-        paired("UR5 mass_matrix", &s, |(q, _, _)| Ur5::mass_matrix(q));
-        paired("UR5 gravity", &s, |(q, _, _)| Ur5::gravity(q));
-        paired("UR5 forward_dynamics", &s, |(q, v, t)| {
+        both_copies("UR5 mass_matrix", &s, |(q, _, _)| Ur5::mass_matrix(q));
+        both_copies("UR5 gravity", &s, |(q, _, _)| Ur5::gravity(q));
+        both_copies("UR5 forward_dynamics", &s, |(q, v, t)| {
             Ur5::forward_dynamics(q, v, t)
         });
-        paired("UR5 coriolis_matrix", &s, |(q, v, _)| {
+        both_copies("UR5 coriolis_matrix", &s, |(q, v, _)| {
             Ur5::coriolis_matrix(q, v)
         });
     }
     if wanted("panda") {
-        let s = states::<7, 7>();
-        paired("Panda inverse_dynamics", &s, |(q, v, a)| {
+        let s = paired::states::<7, 7>(None);
+        both_copies("Panda inverse_dynamics", &s, |(q, v, a)| {
             Panda::inverse_dynamics(q, v, a)
         });
-        paired("Panda mass_matrix", &s, |(q, _, _)| Panda::mass_matrix(q));
-        paired("Panda gravity", &s, |(q, _, _)| Panda::gravity(q));
-        paired("Panda forward_dynamics", &s, |(q, v, t)| {
+        both_copies("Panda mass_matrix", &s, |(q, _, _)| Panda::mass_matrix(q));
+        both_copies("Panda gravity", &s, |(q, _, _)| Panda::gravity(q));
+        both_copies("Panda forward_dynamics", &s, |(q, v, t)| {
             Panda::forward_dynamics(q, v, t)
         });
-        paired("Panda coriolis_matrix", &s, |(q, v, _)| {
+        both_copies("Panda coriolis_matrix", &s, |(q, v, _)| {
             Panda::coriolis_matrix(q, v)
         });
     }
     if wanted("quadruped") {
-        let s = states::<19, 18>();
+        let s = paired::states::<19, 18>(None);
         let loads = [0.0; 12];
-        paired("quadruped inverse_dynamics", &s, |(q, v, a)| {
+        both_copies("quadruped inverse_dynamics", &s, |(q, v, a)| {
             Quadruped::inverse_dynamics(q, v, a, &loads)
         });
-        paired("quadruped mass_matrix", &s, |(q, _, _)| {
+        both_copies("quadruped mass_matrix", &s, |(q, _, _)| {
             Quadruped::mass_matrix(q)
         });
-        paired("quadruped gravity", &s, |(q, _, _)| Quadruped::gravity(q));
-        paired("quadruped forward_dynamics", &s, |(q, v, t)| {
+        both_copies("quadruped gravity", &s, |(q, _, _)| Quadruped::gravity(q));
+        both_copies("quadruped forward_dynamics", &s, |(q, v, t)| {
             Quadruped::forward_dynamics(q, v, t, &loads)
         });
-        paired("quadruped coriolis_matrix", &s, |(q, v, _)| {
+        both_copies("quadruped coriolis_matrix", &s, |(q, v, _)| {
             Quadruped::coriolis_matrix(q, v)
         });
     }

@@ -5,8 +5,8 @@
 #
 # Builds the command-line compiler of each commit (from `git archive`, in a temporary
 # directory), writes the robot's generated code with each, and runs
-# generated_ab/main.rs over both: paired rounds, so a drift of the machine's speed does not
-# bias the ratio (see that file). Both versions are compiled against this checkout's
+# generated_ab/main.rs over both: paired rounds (models/examples/support/paired.rs), so a
+# drift of the machine's speed does not bias the ratio. Both versions are compiled against this checkout's
 # dynamics-runtime, so the commits must generate code for the same runtime API. Run it on
 # an idle machine and quote the B/A column; run it twice to see the spread.
 set -euo pipefail
@@ -20,9 +20,9 @@ b=$2
 model=${3:-quadruped}
 case $model in
     quadruped) file=models/src/quadruped.rs struct=Quadruped
-        call='states::<19, 18, 12>(Some(3)), loads' ;;
-    panda) file=models/src/anchors.rs struct=Panda call='states::<7, 7, 0>(None), none' ;;
-    ur5) file=models/src/anchors.rs struct=Ur5 call='states::<6, 6, 0>(None), none' ;;
+        call='paired::states::<19, 18>(Some(3)), loads' ;;
+    panda) file=models/src/anchors.rs struct=Panda call='paired::states::<7, 7>(None), none' ;;
+    ur5) file=models/src/anchors.rs struct=Ur5 call='paired::states::<6, 6>(None), none' ;;
     *) echo "$0: unknown model '$model' (quadruped, panda or ur5)" >&2; exit 2 ;;
 esac
 
@@ -44,8 +44,9 @@ for side in a b; do
 done
 
 cp "$root/models/tools/generated_ab/main.rs" "$work/ab/src/main.rs"
+cp "$root/models/examples/support/paired.rs" "$work/ab/src/paired.rs"
 cat > "$work/ab/src/run.rs" <<RUST
-use crate::{close, paired, states};
+use crate::{close, line, paired};
 pub fn run() {
     compare!(crate::a::$struct, crate::b::$struct, $call);
 }
