@@ -5,7 +5,7 @@
 //! returning a fixed-size array, a matrix `[[T; C]; R]`, a scalar or a tuple of those
 //! ([`Output`]). Its body is one `let vN = …;` per live node of the graph: the inputs and
 //! constants, then the operations in a depth-first order from the outputs that keeps few
-//! values live at once ([`depth_first`]), then the output expression:
+//! values live at once (`depth_first`), then the output expression:
 //!
 //! ```text
 //! /// Bias torque of the pendulum.

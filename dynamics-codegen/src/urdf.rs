@@ -10,7 +10,7 @@
 //! joint with `floating_base: true`. Mimic, planar, floating and spherical joints are
 //! refused: the tree expansion has no closed form for them.
 //!
-//! The XML is parsed by roxmltree; [`read`] maps its elements to URDF's meaning, as urdfdom
+//! The XML is parsed by roxmltree; `read` maps its elements to URDF's meaning, as urdfdom
 //! and urdf-rs do: the `<link>` and `<joint>` children of the root element, matched by local
 //! name (so namespaces, comments and other elements such as `<material>`, `<gazebo>` and
 //! `<transmission>` pass unread); numbers parsed as Rust parses `f64` after trimming, a

@@ -37,7 +37,7 @@ pub struct JointTransform {
     pub origin_in_parent: Vec3,
 }
 
-/// An affine model value as a node: constant + Σ coefficient · p[k].
+/// An affine model value as a node: constant + Σ coefficient · `p[k]`.
 pub fn value(g: &Graph, v: &Value) -> Node {
     let terms: Vec<Node> = v
         .terms

@@ -159,7 +159,7 @@ pub fn with_gravity(
 /// Runs the Newton–Euler sweeps.
 ///
 /// The joint wrenches are those of the bodies as declared. The joint forces τ come from a
-/// second backward sweep over the base inertial parameters ([`base_inertias`]), which give
+/// second backward sweep over the base inertial parameters (`base_inertias`), which give
 /// the same τ with fewer operations; its wrenches are not the joints' (and go unused).
 pub fn sweep(
     g: &Graph,

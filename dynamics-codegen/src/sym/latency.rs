@@ -193,7 +193,7 @@ impl Graph {
     /// A new graph holding what `outputs` need, with every sum and product regrouped so
     /// that its earliest-ready terms are combined first (module documentation), and the
     /// outputs' nodes in it. Nodes keep the order of the old graph, so the emitted code
-    /// keeps its order (partial sums and products: see [`Regrouping`]).
+    /// keeps its order (partial sums and products: see `Regrouping`).
     #[must_use]
     pub fn regrouped(&self, outputs: &[Node]) -> (Graph, Vec<Node>) {
         let ops = self.ops();
