@@ -6,7 +6,7 @@
 //! tip of the previous link; gravity is −y, in the plane of motion. Only inverse dynamics,
 //! the mass matrix and forward dynamics are generated.
 //!
-//! [`planar_chain!`] writes the `mechanism!` declaration from the list of link names: body
+//! `planar_chain!` writes the `mechanism!` declaration from the list of link names: body
 //! `linkK` and the joint `linkK` that moves it (bodies and joints have separate namespaces).
 //! `Chain3` expands to
 //!
