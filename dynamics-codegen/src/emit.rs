@@ -75,10 +75,10 @@
 //!
 //! rustc overflows its stack on very long functions in debug builds, and its compile time
 //! grows faster than the length, so a body of more than [`FunctionSpec::split_threshold`]
-//! statements is cut into pieces of about equal length. Each piece is a kernel of its own, nested inside the emitted
-//! function (so the emitted code stays a single item, usable at module level or in an
-//! `impl` block), run by `T::run_piece`, which keeps either copy out of line; the emitted
-//! function only chains them:
+//! statements is cut into pieces of about equal length. Each piece is a kernel of its own,
+//! nested inside the emitted function (so the emitted code stays a single item, usable at
+//! module level or in an `impl` block), run by `T::run_piece`, which keeps either copy out
+//! of line; the emitted function only chains them:
 //!
 //! ```text
 //! pub fn f<T: Scalar>(q: &[T; 7], v: &[T; 7]) -> [T; 7] {
@@ -113,10 +113,10 @@ use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::{BTreeSet, HashMap};
 
-/// The default [`FunctionSpec::split_threshold`]: 2400 statements. Each piece re-creates
-/// the constants and inputs it reads, so pieces come out somewhat longer; at this threshold
-/// they stay below ~3000 `let`s, where rustc (LLVM's debug-info scopes,
-/// one per `let`, walked recursively) overflows its stack in debug builds. Each cut costs
+/// The default [`FunctionSpec::split_threshold`]: 2500 statements (inputs, constants and
+/// operations). Each piece re-creates the constants and inputs it reads, so pieces come out
+/// somewhat longer, but below ~3000 `let`s, where rustc (LLVM's debug-info scopes, one per
+/// `let`, walked recursively) overflows its stack in debug builds. Each cut costs
 /// at run time: the values crossing it go through memory, and the optimizer sees one piece
 /// at a time. The quadruped's Coriolis matrix, cut in three at the earlier threshold of
 /// 1500 live nodes, took 0.72 of the time whole (paired, `models/tools/generated_ab.sh`),
@@ -664,9 +664,9 @@ impl Plan {
     }
 }
 
-/// The live non-leaf nodes as statements, in [`depth_first`] order: the sines and cosines of two or more
-/// inputs merged into one [`Step::Batch`] at the first of them, other `sin x`/`cos x` pairs
-/// into one `sin_cos` step at the first of the two.
+/// The live non-leaf nodes as statements, in [`depth_first`] order: the sines and cosines
+/// of two or more inputs merged into one [`Step::Batch`] at the first of them, other
+/// `sin x`/`cos x` pairs into one `sin_cos` step at the first of the two.
 fn schedule(
     ops: &[Op],
     live: &LiveSet,
@@ -740,9 +740,10 @@ fn schedule(
 /// number) first. A value is then computed close to where it is used, so fewer values are
 /// live at once, fewer spill to the stack and fewer cross from one piece to the next.
 /// Measured in one process against the order of node creation, alternating, 41 rounds
-/// (`isa_ab`'s method): the quadruped's Coriolis matrix 0.80 of the time (values carried
-/// between its pieces 377 + 492 → 244 + 373) and its forward dynamics 0.82; its other
-/// functions and the Panda's within the run-to-run spread (±5 %). Both choices count:
+/// (`models/tools/generated_ab.sh`): the quadruped's Coriolis matrix 0.80 of the time
+/// (values carried between its pieces 377 + 492 → 244 + 373) and its forward dynamics
+/// 0.82; its other functions and the Panda's within the run-to-run spread (±5 %). Both
+/// choices count:
 /// taking the first output first gave the Coriolis matrix only 0.95, and the operand order
 /// gave most of the forward dynamics' gain.
 fn depth_first(ops: &[Op], live: &LiveSet, outputs: &[Node]) -> Vec<Node> {

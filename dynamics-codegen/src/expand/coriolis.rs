@@ -15,7 +15,8 @@
 //!
 //! B is never formed as a 6×6 matrix. Its symmetric part is ½ İ, the rate of the inertia
 //! in a fixed frame, (v×*) I − I (v×): an inertia of mass 0 with first moment
-//! ḣ = m v_P + ω × h and rotational part İ_P = ω̂ I_P − I_P ω̂ − (h v_Pᵀ + v_P hᵀ) + 2 (v_P·h) 1.
+//! ḣ = m v_P + ω × h and rotational part
+//! İ_P = ω̂ I_P − I_P ω̂ − (h v_Pᵀ + v_P hᵀ) + 2 (v_P·h) 1.
 //! Its skew part is ½ (I v)×̄ (f×̄ is skew), and Xᵀ (f×̄) X = (Xᵀ f)×̄. So
 //!
 //! ```text
