@@ -21,11 +21,9 @@ use super::crba::motion_subspace;
 use super::geometry::{self, BodyInertia, JointTransform};
 use super::ldlt;
 use super::rnea::joint_dofs;
+use super::spatial::{add6, dot6, force_cross, motion_cross, scale6, Six};
 use crate::model::Model;
 use crate::sym::{Graph, Mat3, Node, Vec3};
-
-/// A spatial vector [linear; angular].
-type Six = (Vec3, Vec3);
 
 /// A symmetric 6×6 matrix [[A, B], [Bᵀ, C]] with A and C symmetric.
 #[derive(Clone, Copy)]
@@ -48,18 +46,6 @@ pub fn symmetric(entry: impl Fn(usize, usize) -> Node) -> Mat3 {
 pub fn congruence(g: &Graph, m: Mat3, s: Mat3) -> Mat3 {
     let ms = m.mul(g, s);
     symmetric(|i, j| ms.row(i).dot(g, m.row(j)))
-}
-
-fn add6(g: &Graph, x: Six, y: Six) -> Six {
-    (x.0.add(g, y.0), x.1.add(g, y.1))
-}
-
-fn dot6(g: &Graph, x: Six, y: Six) -> Node {
-    g.add(x.0.dot(g, y.0), x.1.dot(g, y.1))
-}
-
-fn scale6(g: &Graph, x: Six, s: Node) -> Six {
-    (x.0.scale(g, s), x.1.scale(g, s))
 }
 
 impl Symmetric6 {
@@ -132,16 +118,6 @@ impl Symmetric6 {
             c: shifted_c,
         }
     }
-}
-
-/// v × m for motions: [ω × m_l + v_l × m_a; ω × m_a].
-fn motion_cross(g: &Graph, (v, w): Six, (ml, ma): Six) -> Six {
-    (w.cross(g, ml).add(g, v.cross(g, ma)), w.cross(g, ma))
-}
-
-/// v ×* f for a force: [ω × f_l; ω × f_a + v_l × f_l].
-fn force_cross(g: &Graph, (v, w): Six, (fl, fa): Six) -> Six {
-    (w.cross(g, fl), w.cross(g, fa).add(g, v.cross(g, fl)))
 }
 
 /// X m: a parent-frame motion in the body frame.

@@ -33,22 +33,9 @@
 use super::aba::symmetric;
 use super::crba::{composite_inertias, motion_subspace};
 use super::geometry::{self, BodyInertia, JointTransform};
+use super::spatial::{add6, dot6, force_cross, inertia_times, motion_cross, sub6, Six};
 use crate::model::Model;
 use crate::sym::{Graph, Node, Vec3};
-
-/// A spatial vector [linear; angular].
-type Six = (Vec3, Vec3);
-
-/// The wrench I s of an inertia (m, h, I_P) along the motion s = [v; ω]:
-/// [m v + ω × h; h × v + I_P ω].
-fn inertia_times(g: &Graph, i: &BodyInertia, (v, w): Six) -> Six {
-    (
-        v.scale(g, i.mass).add(g, w.cross(g, i.first_moment)),
-        i.first_moment
-            .cross(g, v)
-            .add(g, i.inertia_about_origin.mul_vec(g, w)),
-    )
-}
 
 /// Half of body i's B terms, in its frame: ½ İ_i as an inertia of mass 0 and the momentum
 /// ½ I_i v_i (whose linear part is also ½ ḣ_i).
@@ -109,20 +96,6 @@ fn velocities(
     out
 }
 
-fn dot(g: &Graph, a: Six, b: Six) -> Node {
-    g.add(a.0.dot(g, b.0), a.1.dot(g, b.1))
-}
-
-/// v × m for a motion m: [ω × m_v + v × m_ω; ω × m_ω].
-fn motion_cross_vector(g: &Graph, (v, w): Six, (mv, mw): Six) -> Six {
-    (w.cross(g, mv).add(g, v.cross(g, mw)), w.cross(g, mw))
-}
-
-/// s ×* f for a force f: [ω × F; v × F + ω × M].
-fn force_cross_vector(g: &Graph, (v, w): Six, (f, m): Six) -> Six {
-    (w.cross(g, f), v.cross(g, f).add(g, w.cross(g, m)))
-}
-
 /// C(q, q̇), an `nv × nv` matrix of nodes.
 pub fn coriolis_matrix(
     g: &Graph,
@@ -154,18 +127,14 @@ pub fn coriolis_matrix(
     let axis_rates: Vec<Vec<Six>> = subspaces
         .iter()
         .zip(&twists)
-        .map(|(s, &twist)| {
-            s.iter()
-                .map(|&col| motion_cross_vector(g, twist, col))
-                .collect()
-        })
+        .map(|(s, &twist)| s.iter().map(|&col| motion_cross(g, twist, col)).collect())
         .collect();
     let mut c = vec![vec![g.zero(); model.nv]; model.nv];
     for (j, body) in model.bodies.iter().enumerate() {
         for (col, &s_j) in subspaces[j].iter().enumerate() {
             let column = body.joint.idx_v + col;
             let symmetric_part = inertia_times(g, &rate_composite[j], s_j);
-            let skew_part = force_cross_vector(g, s_j, momenta[j]);
+            let skew_part = force_cross(g, s_j, momenta[j]);
             // B^C s and B^Cᵀ s.
             let b_s = add6(g, symmetric_part, skew_part);
             let bt_s = sub6(g, symmetric_part, skew_part);
@@ -177,7 +146,7 @@ pub fn coriolis_matrix(
             let mut f2 = inertia_times(g, &i_composite[j], s_j);
             let mut f3 = bt_s;
             for (row_in_joint, &s_row) in subspaces[j].iter().enumerate() {
-                c[body.joint.idx_v + row_in_joint][column] = dot(g, s_row, f1);
+                c[body.joint.idx_v + row_in_joint][column] = dot6(g, s_row, f1);
             }
             let mut i = j;
             while let Some(p) = model.bodies[i].parent {
@@ -189,20 +158,12 @@ pub fn coriolis_matrix(
                 let ancestor = &model.bodies[i].joint;
                 for (row_in_joint, &s_i) in subspaces[i].iter().enumerate() {
                     let row = ancestor.idx_v + row_in_joint;
-                    c[row][column] = dot(g, s_i, f1);
+                    c[row][column] = dot6(g, s_i, f1);
                     c[column][row] =
-                        g.add(dot(g, f2, axis_rates[i][row_in_joint]), dot(g, f3, s_i));
+                        g.add(dot6(g, f2, axis_rates[i][row_in_joint]), dot6(g, f3, s_i));
                 }
             }
         }
     }
     c
-}
-
-fn add6(g: &Graph, a: Six, b: Six) -> Six {
-    (a.0.add(g, b.0), a.1.add(g, b.1))
-}
-
-fn sub6(g: &Graph, a: Six, b: Six) -> Six {
-    (a.0.sub(g, b.0), a.1.sub(g, b.1))
 }

@@ -19,6 +19,7 @@
 
 use super::geometry::{self, BodyInertia, JointTransform};
 use super::rnea::joint_dofs;
+use super::spatial::inertia_times;
 use crate::model::{JointKind, Model};
 use crate::sym::{Graph, Node, Vec3};
 
@@ -126,12 +127,7 @@ pub fn mass_matrix(
         let c = &composite[j];
         for (col, s) in subspaces[j].iter().enumerate() {
             let column = body.joint.idx_v + col;
-            let (v, w) = *s;
-            let mut force = v.scale(g, c.mass).add(g, w.cross(g, c.first_moment));
-            let mut moment = c
-                .first_moment
-                .cross(g, v)
-                .add(g, c.inertia_about_origin.mul_vec(g, w));
+            let (mut force, mut moment) = inertia_times(g, c, *s);
             for (row_in_joint, s_row) in subspaces[j].iter().enumerate() {
                 let row = body.joint.idx_v + row_in_joint;
                 m[row][column] = project(g, s_row, force, moment);

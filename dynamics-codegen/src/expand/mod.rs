@@ -32,6 +32,7 @@ pub mod geometry;
 pub mod ldlt;
 pub mod qr;
 pub mod rnea;
+pub mod spatial;
 pub mod statics;
 
 use crate::emit::{Arg, FunctionSpec, Output};
