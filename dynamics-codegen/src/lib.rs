@@ -1,66 +1,136 @@
-//! The compiler of the dynamics toolkit. Data flows one way (see DESIGN.md):
+//! The compiler of the dynamics toolkit: a declared mechanism (the `mechanism!` language or
+//! a URDF file) to straight-line Rust. Data flows one way, through one function,
+//! [`compile`] then [`to_tokens`]:
 //!
 //! ```text
-//! DSL tokens / URDF file -> syntax -> model (validated) -> expand (symbolic Newton–Euler)
-//!   -> sym (optimized DAG) -> emit (straight-line Rust)
+//! tokens ──parse──▶ syntax::Mechanism ──urdf::import──▶ (URDF links and joints added)
+//!   ──model::lower──▶ validated Model (every rule checked, errors at their spans)
+//!   ──functions::CATALOG + expand──▶ one graph per requested function (textbook recursions;
+//!                                    base-parameter pass for the functions of the Lagrangian)
+//!   ──passes::latency, passes::signs──▶ the graphs regrouped for latency, signs settled
+//!   ──passes::fusion, schedule──▶ multiply-adds, statement order, pieces
+//!   ──print──▶ Rust tokens (the functions, their nalgebra wrappers, the type and its traits)
 //! ```
 //!
-//! [`compile`] runs the pipeline up to the expression graphs, [`to_tokens`] emits them, and
-//! [`expand_mechanism`] is the whole thing as the `mechanism!` macro uses it. Each stage is
-//! a module usable on its own (from the macro, a `build.rs` or the CLI).
+//! The stages are private modules; the entry points are [`expand_mechanism`] (what the
+//! `mechanism!` macro calls), [`compile`] and [`to_tokens`] (for a `build.rs` or the
+//! command-line compiler), with [`Mechanism`] the parsed declaration and [`Compiled`] the
+//! result. `docs/ARCHITECTURE.md` in the repository describes each stage.
 
-pub mod declare;
-pub mod emit;
-pub mod expand;
-pub mod model;
-pub mod sym;
-pub mod syntax;
-pub mod urdf;
+mod declare;
+mod expand;
+mod functions;
+mod ir;
+mod model;
+mod passes;
+mod print;
+mod schedule;
+mod sym;
+mod syntax;
+mod urdf;
+
+pub use sym::OpCount;
+pub use syntax::Mechanism;
+pub use urdf::manifest_dir;
 
 use proc_macro2::TokenStream;
 use quote::quote;
 use std::path::Path;
 
 /// The path under which generated code finds the runtime crate.
-pub fn runtime_path() -> TokenStream {
+fn runtime_path() -> TokenStream {
     quote!(::dynamics_runtime)
 }
 
-/// A compiled mechanism: the validated model and one expression graph per function.
+/// A compiled mechanism: the validated model and one expression graph per function, after
+/// the passes, ready to print.
 pub struct Compiled {
-    /// The validated model.
-    pub model: model::Model,
-    /// The generated functions, in a fixed order.
-    pub functions: Vec<expand::Function>,
+    model: model::Model,
+    functions: Vec<ir::Function>,
 }
 
-/// Imports the URDF file (if any, relative to `manifest_dir`), validates the mechanism and
-/// expands its requested functions.
-pub fn compile(mut mechanism: syntax::Mechanism, manifest_dir: &Path) -> syn::Result<Compiled> {
+/// One generated function of a [`Compiled`] mechanism, for reports.
+#[derive(Clone, Debug)]
+pub struct FunctionSummary {
+    /// Its name in the generated code.
+    pub name: String,
+    /// The operations it computes.
+    pub ops: OpCount,
+    /// The longest chain of dependent operations, in estimated cycles.
+    pub longest_chain: u32,
+}
+
+impl Compiled {
+    /// The mechanism's type name.
+    #[must_use]
+    pub fn name(&self) -> String {
+        self.model.name.to_string()
+    }
+
+    /// Its number of velocity coordinates.
+    #[must_use]
+    pub fn nv(&self) -> usize {
+        self.model.nv
+    }
+
+    /// Its generated functions, in the order they are emitted.
+    #[must_use]
+    pub fn functions(&self) -> Vec<FunctionSummary> {
+        self.functions
+            .iter()
+            .map(|f| {
+                let nodes = f.spec.output.nodes();
+                FunctionSummary {
+                    name: f.spec.name.to_string(),
+                    ops: f.graph.op_count(&nodes),
+                    longest_chain: f.graph.longest_chain(&nodes),
+                }
+            })
+            .collect()
+    }
+}
+
+/// The pipeline up to the optimized graphs: imports the URDF file (if any, relative to
+/// `manifest_dir`), lowers and validates the mechanism, expands each requested function
+/// and runs the graph passes on it.
+///
+/// # Errors
+/// Every error of the declaration (or of the URDF file), each at the span of the offending
+/// tokens.
+pub fn compile(mut mechanism: Mechanism, manifest_dir: &Path) -> syn::Result<Compiled> {
     let source = urdf::import(&mut mechanism, manifest_dir)?;
     let mut model = model::lower(&mechanism)?;
     model
         .source_files
         .extend(source.map(|p| p.display().to_string()));
     let scalar: syn::Path = syn::parse_quote!(::dynamics_runtime::Scalar);
-    let mut functions = expand::expand(&model, scalar);
-    if mechanism.isa == Some(syntax::Isa::Baseline) {
-        for f in &mut functions {
-            f.spec.dispatch = false;
-        }
-    }
+    let dispatch = mechanism.isa != Some(syntax::Isa::Baseline);
+    let functions = functions::CATALOG
+        .iter()
+        .filter(|entry| (entry.wanted)(&model))
+        .map(|entry| {
+            let ir::Function { graph, mut spec } = entry.function(&model, &scalar);
+            let (graph, output) = passes::latency::regroup(&graph, &spec.output);
+            spec.output = passes::signs::settle(&graph, &output);
+            spec.dispatch = dispatch;
+            ir::Function { graph, spec }
+        })
+        .collect();
     Ok(Compiled { model, functions })
 }
 
 /// The Rust items of a compiled mechanism: its type, its `Mechanism` implementation and its
-/// dynamics functions as inherent associated functions.
+/// functions as inherent associated functions, each with its nalgebra wrapper.
+#[must_use]
 pub fn to_tokens(compiled: &Compiled) -> TokenStream {
     let name = &compiled.model.name;
     let runtime = runtime_path();
     let nalgebra = quote!(#runtime::nalgebra);
     let functions = compiled.functions.iter().map(|f| {
-        let function = emit::emit_function(&f.graph, &f.spec);
-        let wrapper = emit::emit_nalgebra_wrapper(&f.spec, &nalgebra);
+        let fused = passes::fusion::fuse(&f.graph, &f.spec.output);
+        let plan = schedule::Plan::new(&f.graph, &f.spec, fused);
+        let function = print::function(&f.graph, &f.spec, &plan);
+        let wrapper = print::nalgebra_wrapper(&f.spec, &nalgebra);
         quote!(#function #wrapper)
     });
     let costs: Vec<declare::Cost> = compiled
@@ -87,8 +157,9 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
 /// Runs the pipeline on the tokens of a `mechanism!` invocation. On error, returns the
 /// errors as `compile_error!`s, each at its span, plus a stub of the declared type so that
 /// the user sees the real errors rather than a cascade of "type not found".
+#[must_use]
 pub fn expand_mechanism(input: TokenStream) -> TokenStream {
-    let mechanism: syntax::Mechanism = match syn::parse2(input) {
+    let mechanism: Mechanism = match syn::parse2(input) {
         Ok(m) => m,
         Err(e) => return e.to_compile_error(),
     };
@@ -206,7 +277,7 @@ mod tests {
     fn long_expansions_are_split_below_rustc_limits() {
         // rustc overflows its stack on debug builds of functions with more than about 3000
         // `let`s; every emitted body must stay well below that.
-        let mechanism: syntax::Mechanism = syn::parse2(expand::tests::chain(
+        let mechanism: syntax::Mechanism = syn::parse2(functions::tests::chain(
             30,
             true,
             quote!([mass_matrix, coriolis, forward_dynamics]),

@@ -12,7 +12,7 @@
 //! count: the longest chain of dependent operations, in estimated cycles
 //! (`Graph::longest_chain`).
 
-use dynamics_codegen::{compile, syntax, to_tokens, Compiled};
+use dynamics_codegen::{compile, to_tokens, Compiled, Mechanism};
 use std::io::{ErrorKind, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -53,7 +53,7 @@ fn manifest_dir(file: &Path) -> PathBuf {
         .to_path_buf()
 }
 
-fn mechanisms(file: &Path) -> Result<Vec<(syntax::Mechanism, PathBuf)>, String> {
+fn mechanisms(file: &Path) -> Result<Vec<(Mechanism, PathBuf)>, String> {
     let text = std::fs::read_to_string(file)
         .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
     if file.extension().is_some_and(|e| e == "urdf") {
@@ -103,14 +103,11 @@ fn mechanisms(file: &Path) -> Result<Vec<(syntax::Mechanism, PathBuf)>, String> 
 }
 
 fn op_table(compiled: &Compiled) -> String {
-    let mut out = format!("{} ({} dof):\n", compiled.model.name, compiled.model.nv);
-    for f in &compiled.functions {
-        let nodes = f.spec.output.nodes();
-        let count = f.graph.op_count(&nodes);
-        let chain = f.graph.longest_chain(&nodes);
+    let mut out = format!("{} ({} dof):\n", compiled.name(), compiled.nv());
+    for f in compiled.functions() {
         out += &format!(
-            "  {:<20} {count}; longest chain {chain} cycles\n",
-            f.spec.name.to_string()
+            "  {:<20} {}; longest chain {} cycles\n",
+            f.name, f.ops, f.longest_chain
         );
     }
     out

@@ -19,7 +19,7 @@
 //! Cargo gives proc macros in a release build (`opt-level = 0`, its `build-override`), which
 //! is how fast the expansion runs inside `cargo build --release`.
 
-use dynamics_codegen::{compile, syntax, to_tokens};
+use dynamics_codegen::{compile, to_tokens, Mechanism};
 use std::path::Path;
 use std::time::Instant;
 
@@ -95,7 +95,7 @@ fn main() {
             while repeats < REPEATS || start.elapsed().as_secs_f64() < MIN_SECONDS {
                 repeats += 1;
                 let t0 = Instant::now();
-                let mechanism: syntax::Mechanism =
+                let mechanism: Mechanism =
                     syn::parse2(tokens.clone()).unwrap_or_else(|e| panic!("{file}: {e}"));
                 let t1 = Instant::now();
                 let compiled = compile(mechanism, dir).unwrap_or_else(|e| panic!("{file}: {e}"));

@@ -17,11 +17,11 @@
 //! the same nodes. X_iᵀ I X_i with X_i = [[Eᵀ, −Eᵀ r̂], [0, Eᵀ]] is, with A' = E A Eᵀ,
 //! B' = E B Eᵀ, C' = E C Eᵀ: [[A', B' − A' r̂], [Bᵀ' + r̂ A', C' + r̂ B' + (r̂ B')ᵀ − r̂ A' r̂]].
 
-use super::crba::motion_subspace;
 use super::geometry::{self, BodyInertia, JointTransform};
 use super::ldlt;
-use super::rnea::joint_dofs;
-use super::spatial::{add6, dot6, force_cross, motion_cross, scale6, Six};
+use super::spatial::{
+    add6, congruence, dot6, force_cross, motion_cross, motion_subspace, scale6, symmetric, Six,
+};
 use crate::model::Model;
 use crate::sym::{Graph, Mat3, Node, Vec3};
 
@@ -31,21 +31,6 @@ struct Symmetric6 {
     a: Mat3,
     b: Mat3,
     c: Mat3,
-}
-
-/// A symmetric matrix from its upper triangle: entry (i, j) for i ≤ j, mirrored.
-pub fn symmetric(entry: impl Fn(usize, usize) -> Node) -> Mat3 {
-    let upper: [[Option<Node>; 3]; 3] =
-        std::array::from_fn(|i| std::array::from_fn(|j| (i <= j).then(|| entry(i, j))));
-    Mat3(std::array::from_fn(|i| {
-        std::array::from_fn(|j| upper[i.min(j)][i.max(j)].unwrap_or_else(|| entry(i, j)))
-    }))
-}
-
-/// M S Mᵀ for symmetric S, computing each entry of the upper triangle once.
-pub fn congruence(g: &Graph, m: Mat3, s: Mat3) -> Mat3 {
-    let ms = m.mul(g, s);
-    symmetric(|i, j| ms.row(i).dot(g, m.row(j)))
 }
 
 impl Symmetric6 {
@@ -180,7 +165,7 @@ pub fn forward_dynamics(
     for i in (0..n).rev() {
         let body = &model.bodies[i];
         let k = body.joint.idx_v;
-        let dofs = joint_dofs(&body.joint.kind);
+        let dofs = body.joint.kind.dofs();
         let ia = inertia_a[i];
         let u: Vec<Six> = subspaces[i].iter().map(|s| ia.apply(g, *s)).collect();
         let armature = geometry::value(g, &body.joint.armature);

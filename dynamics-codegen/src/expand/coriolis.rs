@@ -30,10 +30,10 @@
 //! frame, so each column's forces are carried up the tree like the mass matrix's.
 //! Six-dimensional quantities are linear first: motion [v_P; ω], force [F; M_P].
 
-use super::aba::symmetric;
-use super::crba::{composite_inertias, motion_subspace};
+use super::crba::composite_inertias;
 use super::geometry::{self, BodyInertia, JointTransform};
 use super::spatial::{add6, dot6, force_cross, inertia_times, motion_cross, sub6, Six};
+use super::spatial::{motion_subspace, symmetric};
 use crate::model::Model;
 use crate::sym::{Graph, Node, Vec3};
 

@@ -14,13 +14,12 @@
 //! f = I^c_j s_j (F = m v + ω × h, M_P = h × v + I_P ω for s = [v; ω]); then
 //! M_ij = s_iᵀ f for j and each ancestor i, carrying f to each parent frame on the way.
 //! Entries between bodies on different branches are zero and cost nothing. M depends on the
-//! inertias only through the kinetic energy, so the generated function sums over base
-//! inertial parameters ([`mass_matrix_of_base_parameters`], [`super::base_parameters`]).
+//! inertias only through the kinetic energy, so the generated function is expanded over
+//! base inertial parameters ([`crate::passes::base_parameters`]).
 
 use super::geometry::{self, BodyInertia, JointTransform};
-use super::rnea::joint_dofs;
-use super::spatial::inertia_times;
-use crate::model::{JointKind, Model};
+use super::spatial::{congruence, inertia_times, motion_subspace, symmetric};
+use crate::model::Model;
 use crate::sym::{Graph, Node, Vec3};
 
 /// Composite inertias of every body's subtree, about its origin, in its frame.
@@ -50,11 +49,11 @@ fn to_parent(g: &Graph, t: &JointTransform, inertia: &BodyInertia) -> BodyInerti
     let h_rotated = e.mul_vec(g, inertia.first_moment);
     let r_hat = r.cross_matrix(g);
     let h_hat = h_rotated.cross_matrix(g);
-    let rotated = super::aba::congruence(g, e, inertia.inertia_about_origin);
+    let rotated = congruence(g, e, inertia.inertia_about_origin);
     // ĥ r̂ + r̂ ĥ and m r̂² are symmetric: one triangle computed, mirrored.
     let h_r = h_hat.mul(g, r_hat);
-    let cross_terms = super::aba::symmetric(|i, j| g.add(h_r.get(i, j), h_r.get(j, i)));
-    let r_r = super::aba::symmetric(|i, j| r_hat.row(i).dot(g, r_hat.col(j)));
+    let cross_terms = symmetric(|i, j| g.add(h_r.get(i, j), h_r.get(j, i)));
+    let r_r = symmetric(|i, j| r_hat.row(i).dot(g, r_hat.col(j)));
     let shift = r_r.scale(g, inertia.mass);
     BodyInertia {
         mass: inertia.mass,
@@ -64,49 +63,9 @@ fn to_parent(g: &Graph, t: &JointTransform, inertia: &BodyInertia) -> BodyInerti
     }
 }
 
-/// The motion subspace of a joint: one [v; ω] column per velocity coordinate.
-pub fn motion_subspace(g: &Graph, kind: &JointKind) -> Vec<(Vec3, Vec3)> {
-    match kind {
-        JointKind::Revolute { axis_in_joint } => {
-            vec![(Vec3::zero(g), Vec3::constant(g, *axis_in_joint))]
-        }
-        JointKind::Prismatic { axis_in_joint } => {
-            vec![(Vec3::constant(g, *axis_in_joint), Vec3::zero(g))]
-        }
-        JointKind::Free => (0..6)
-            .map(|k| {
-                let unit = |j: usize| {
-                    let mut e = [0.0; 3];
-                    e[j] = 1.0;
-                    Vec3::constant(g, e)
-                };
-                if k < 3 {
-                    (unit(k), Vec3::zero(g))
-                } else {
-                    (Vec3::zero(g), unit(k - 3))
-                }
-            })
-            .collect(),
-    }
-}
-
 /// sᵀ f for a motion column s = [v; ω] and a wrench f = [F; M].
 fn project(g: &Graph, column: &(Vec3, Vec3), force: Vec3, moment: Vec3) -> Node {
     g.add(column.0.dot(g, force), column.1.dot(g, moment))
-}
-
-/// [`mass_matrix`] over the base inertial parameters that make it cheapest
-/// ([`super::base_parameters`]): the same M(q), fewer operations.
-pub fn mass_matrix_of_base_parameters(
-    g: &Graph,
-    model: &Model,
-    transforms: &[JointTransform],
-    inertias: &[BodyInertia],
-) -> Vec<Vec<Node>> {
-    let build = |i: &[BodyInertia]| mass_matrix(g, model, transforms, i);
-    let regrouped =
-        super::base_parameters::regroup(g, model, transforms, inertias, |i| build(i).concat());
-    build(&regrouped)
 }
 
 /// M(q), full and symmetric, with armature on the diagonal.
@@ -145,7 +104,7 @@ pub fn mass_matrix(
             }
         }
         let armature = geometry::value(g, &body.joint.armature);
-        for k in body.joint.idx_v..body.joint.idx_v + joint_dofs(&body.joint.kind) {
+        for k in body.joint.idx_v..body.joint.idx_v + body.joint.kind.dofs() {
             m[k][k] = g.add(m[k][k], armature);
         }
     }

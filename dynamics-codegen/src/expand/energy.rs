@@ -13,7 +13,6 @@
 //! (zero potential at the world origin, as Pinocchio).
 
 use super::geometry::{self, BodyInertia, JointTransform};
-use super::rnea::joint_dofs;
 use crate::model::{JointKind, Model};
 use crate::sym::{Graph, Node, Vec3};
 
@@ -66,7 +65,7 @@ pub fn kinetic(
         let angular = omega.dot(g, inertia.inertia_about_origin.mul_vec(g, omega));
         twice = g.add(twice, g.add(linear, g.add(coupling, angular)));
         let armature = geometry::value(g, &body.joint.armature);
-        for j in k..k + joint_dofs(&body.joint.kind) {
+        for j in k..k + body.joint.kind.dofs() {
             twice = g.add(twice, g.mul(armature, g.mul(velocity[j], velocity[j])));
         }
     }

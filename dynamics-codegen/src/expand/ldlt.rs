@@ -13,7 +13,6 @@
 //! λ(k) is the coordinate k descends from: the previous coordinate of the same free joint,
 //! or the last coordinate of the parent body's joint. Each pivot is inverted once.
 
-use super::rnea::joint_dofs;
 use crate::model::Model;
 use crate::sym::{Graph, Node};
 
@@ -25,9 +24,9 @@ pub fn coordinate_parents(model: &Model) -> Vec<Option<usize>> {
         let first = body.joint.idx_v;
         parents[first] = body.parent.map(|p| {
             let pj = &model.bodies[p].joint;
-            pj.idx_v + joint_dofs(&pj.kind) - 1
+            pj.idx_v + pj.kind.dofs() - 1
         });
-        for k in first + 1..first + joint_dofs(&body.joint.kind) {
+        for k in first + 1..first + body.joint.kind.dofs() {
             parents[k] = Some(k - 1);
         }
     }

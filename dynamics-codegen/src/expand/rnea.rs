@@ -32,13 +32,8 @@
 //! moment for a revolute joint, the force for a prismatic one, the whole wrench for a free
 //! joint), plus armature · q̈ and damping · q̇.
 //!
-//! τ itself is computed over base inertial parameters (Khalil and Kleinfinger's regrouping,
-//! done at compile time on numbers): the share of a body that its joint's motion leaves
-//! unchanged (about a revolute axis s: the mass, the first moment along s and an inertia
-//! Y (1 − s sᵀ); along a prismatic axis: the rotational inertia) moves as if fixed to the
-//! parent, so it is added to the parent's inertia (or dropped at the fixed base). τ is
-//! unchanged, the per-body wrenches are not; the joint wrenches ([`Sweep::wrenches`]) come
-//! from the declared inertias.
+//! The sweep takes the inertias it is given: the declared ones for the joint wrenches, or
+//! base inertial parameters for τ alone ([`crate::passes::base_parameters`]).
 
 use super::geometry::{self, BodyInertia, JointTransform};
 use crate::model::{JointKind, LoadKind, Model};
@@ -111,12 +106,32 @@ pub fn euler_moment(g: &Graph, inertia: &Mat3, alpha: Vec3, p: &[[Node; 3]; 3]) 
     Vec3::new(component(0), component(1), component(2))
 }
 
-/// What a sweep computes: the joint forces and the wrench each joint transmits.
-pub struct Sweep {
-    /// τ, one per velocity coordinate.
-    pub tau: Vec<Node>,
+/// What a sweep computes: every body's motion, the loads on it, and the backward sweep
+/// (the wrench each joint transmits and the joint forces τ).
+pub(crate) struct Sweep {
+    /// ω, α and a_P of every body.
+    pub motions: Vec<BodyMotion>,
+    /// The applied loads on every body, [F; M_P] in its frame ([`load_wrenches`]).
+    pub loads: Vec<(Vec3, Vec3)>,
+    /// The backward sweep over the sweep's inertias.
+    pub backward: Backward,
+}
+
+impl Sweep {
     /// (F, M_P) transmitted by each body's joint, in the body frame about P.
-    pub wrenches: Vec<(Vec3, Vec3)>,
+    pub fn wrenches(&self) -> &[(Vec3, Vec3)] {
+        &self.backward.joint
+    }
+
+    /// The wrench body `i` needs for its own motion with the inertia `inertia`, less the
+    /// loads on it.
+    pub fn own(&self, g: &Graph, i: usize, inertia: &BodyInertia) -> (Vec3, Vec3) {
+        let (force, moment) = body_wrench(g, &self.motions[i], inertia);
+        (
+            force.sub(g, self.loads[i].0),
+            moment.sub(g, self.loads[i].1),
+        )
+    }
 }
 
 /// The inputs of one sweep. Zero nodes fold away the terms they multiply, so the same code
@@ -132,36 +147,9 @@ pub struct SweepInputs<'a> {
     pub loads: bool,
 }
 
-/// The sweeps with gravity acting, at the given q̇ and q̈ (zero nodes for bias and gravity).
-pub fn with_gravity(
-    g: &Graph,
-    model: &Model,
-    transforms: &[JointTransform],
-    inertias: &[BodyInertia],
-    velocity: &[Node],
-    acceleration: &[Node],
-    loads: bool,
-) -> Sweep {
-    sweep(
-        g,
-        model,
-        transforms,
-        inertias,
-        &SweepInputs {
-            velocity,
-            acceleration,
-            gravity: true,
-            loads,
-        },
-    )
-}
-
-/// Runs the Newton–Euler sweeps.
-///
-/// The joint wrenches are those of the bodies as declared. The joint forces τ come from a
-/// second backward sweep over the base inertial parameters (`base_inertias`), which give
-/// the same τ with fewer operations; its wrenches are not the joints' (and go unused).
-pub fn sweep(
+/// Runs the Newton–Euler sweeps over `inertias`: the forward sweep of every body's
+/// motion, each body's own wrench less its loads, and the backward sweep.
+pub(crate) fn sweep(
     g: &Graph,
     model: &Model,
     transforms: &[JointTransform],
@@ -170,22 +158,23 @@ pub fn sweep(
 ) -> Sweep {
     let motions = motions(g, model, transforms, inputs);
     let loads = load_wrenches(g, model, inputs.loads);
-    // The wrench each body needs for its own motion, less the loads on it.
-    let own = |i: usize, inertia: &BodyInertia| {
-        let (force, moment) = body_wrench(g, &motions[i], inertia);
-        (force.sub(g, loads[i].0), moment.sub(g, loads[i].1))
+    let mut sweep = Sweep {
+        motions,
+        loads,
+        backward: Backward {
+            own: Vec::new(),
+            joint: Vec::new(),
+            carried: Vec::new(),
+            tau: Vec::new(),
+        },
     };
-    let declared: Vec<(Vec3, Vec3)> = inertias
+    let own: Vec<(Vec3, Vec3)> = inertias
         .iter()
         .enumerate()
-        .map(|(i, b)| own(i, b))
+        .map(|(i, b)| sweep.own(g, i, b))
         .collect();
-    let declared = Backward::new(g, model, transforms, inputs, declared);
-    let (regrouped, _) = base_inertias(g, model, transforms, inputs, inertias, &declared, own);
-    Sweep {
-        tau: regrouped.tau,
-        wrenches: declared.joint,
-    }
+    sweep.backward = Backward::new(g, model, transforms, inputs, own);
+    sweep
 }
 
 /// The backward sweep: each joint's wrench f_i is the body's own wrench plus its children's
@@ -193,7 +182,7 @@ pub fn sweep(
 /// Kept per body, so that a change of a few bodies' own wrenches redoes only their paths to
 /// the root.
 #[derive(Clone)]
-struct Backward {
+pub(crate) struct Backward {
     /// Each body's own wrench [F; M_P] (loads subtracted).
     own: Vec<(Vec3, Vec3)>,
     /// f_i, the wrench each joint transmits to its body, in the body frame about P.
@@ -201,7 +190,7 @@ struct Backward {
     /// f_i carried to the parent's frame, about the parent's origin.
     carried: Vec<(Vec3, Vec3)>,
     /// τ.
-    tau: Vec<Node>,
+    pub tau: Vec<Node>,
 }
 
 impl Backward {
@@ -224,7 +213,7 @@ impl Backward {
     }
 
     /// The sweep with the own wrenches of some bodies replaced.
-    fn with(
+    pub fn with(
         &self,
         g: &Graph,
         model: &Model,
@@ -298,81 +287,12 @@ fn joint_force(
     }
     let armature = geometry::value(g, &joint.armature);
     let damping = geometry::value(g, &joint.damping);
-    for j in k..k + joint_dofs(&joint.kind) {
+    for j in k..k + joint.kind.dofs() {
         let extra = g.add(
             g.mul(armature, inputs.acceleration[j]),
             g.mul(damping, inputs.velocity[j]),
         );
         tau[j] = g.add(tau[j], extra);
-    }
-}
-
-/// The backward sweep over base inertial parameters: inertias that give the same joint
-/// forces τ as the declared ones (but not the same joint wrenches), with shares of each
-/// body that its joint's motion leaves unchanged moved to the parent
-/// ([`geometry::movable_shares`]; the regrouping of inertial parameters of Khalil and
-/// Kleinfinger, "Minimum operations and minimum parameters of the dynamic models of tree
-/// structure robots", 1987), chosen by [`super::base_parameters::greedy`] to make τ cost the
-/// fewest operations (then additions). Each candidate redoes only the changed bodies' paths
-/// to the root ([`Backward::with`]).
-fn base_inertias(
-    g: &Graph,
-    model: &Model,
-    transforms: &[JointTransform],
-    inputs: &SweepInputs,
-    inertias: &[BodyInertia],
-    declared: &Backward,
-    own: impl Fn(usize, &BodyInertia) -> (Vec3, Vec3),
-) -> (Backward, Vec<BodyInertia>) {
-    super::base_parameters::greedy(
-        g,
-        model,
-        inertias,
-        declared.clone(),
-        |sweep| super::base_parameters::arithmetic_cost(g, &sweep.tau),
-        |sweep, candidate, changed| {
-            let changes: Vec<(usize, (Vec3, Vec3))> = changed
-                .iter()
-                .map(|&k| (k, own(k, &candidate[k])))
-                .collect();
-            sweep.with(g, model, transforms, inputs, &changes)
-        },
-    )
-}
-
-/// The base inertial parameters that make inverse dynamics (with gravity, q̇ and q̈ as
-/// inputs) cheapest, as [`sweep`] chooses them: a choice computed once, incrementally, that
-/// serves the other functions of the Lagrangian too ([`super::base_parameters`]).
-pub fn base_parameters(
-    g: &Graph,
-    model: &Model,
-    transforms: &[JointTransform],
-    inertias: &[BodyInertia],
-) -> Vec<BodyInertia> {
-    let velocity: Vec<Node> = (0..model.nv).map(|k| g.input(Array::V, k)).collect();
-    let acceleration: Vec<Node> = (0..model.nv).map(|k| g.input(Array::A, k)).collect();
-    let inputs = SweepInputs {
-        velocity: &velocity,
-        acceleration: &acceleration,
-        gravity: true,
-        loads: false,
-    };
-    let motions = motions(g, model, transforms, &inputs);
-    let own = |i: usize, inertia: &BodyInertia| body_wrench(g, &motions[i], inertia);
-    let declared: Vec<(Vec3, Vec3)> = inertias
-        .iter()
-        .enumerate()
-        .map(|(i, b)| own(i, b))
-        .collect();
-    let declared = Backward::new(g, model, transforms, &inputs, declared);
-    base_inertias(g, model, transforms, &inputs, inertias, &declared, own).1
-}
-
-/// Number of velocity coordinates of a joint.
-pub fn joint_dofs(kind: &JointKind) -> usize {
-    match kind {
-        JointKind::Free => 6,
-        _ => 1,
     }
 }
 

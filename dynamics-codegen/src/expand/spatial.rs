@@ -1,8 +1,10 @@
 //! Spatial vectors and the operations the sweeps share. Six-dimensional quantities are
 //! linear first: a motion [v_P; ω], a force [F; M_P], both about the frame's origin P.
+//! Also the symmetric 3×3 helpers of the inertia sweeps and a joint's motion subspace.
 
 use super::geometry::BodyInertia;
-use crate::sym::{Graph, Node, Vec3};
+use crate::model::JointKind;
+use crate::sym::{Graph, Mat3, Node, Vec3};
 
 /// A spatial vector [linear; angular].
 pub type Six = (Vec3, Vec3);
@@ -46,4 +48,45 @@ pub fn inertia_times(g: &Graph, i: &BodyInertia, (v, w): Six) -> Six {
             .cross(g, v)
             .add(g, i.inertia_about_origin.mul_vec(g, w)),
     )
+}
+
+/// A symmetric matrix from its upper triangle: entry (i, j) for i ≤ j, mirrored.
+pub fn symmetric(entry: impl Fn(usize, usize) -> Node) -> Mat3 {
+    let upper: [[Option<Node>; 3]; 3] =
+        std::array::from_fn(|i| std::array::from_fn(|j| (i <= j).then(|| entry(i, j))));
+    Mat3(std::array::from_fn(|i| {
+        std::array::from_fn(|j| upper[i.min(j)][i.max(j)].unwrap_or_else(|| entry(i, j)))
+    }))
+}
+
+/// M S Mᵀ for symmetric S, computing each entry of the upper triangle once.
+pub fn congruence(g: &Graph, m: Mat3, s: Mat3) -> Mat3 {
+    let ms = m.mul(g, s);
+    symmetric(|i, j| ms.row(i).dot(g, m.row(j)))
+}
+
+/// The motion subspace of a joint: one [v; ω] column per velocity coordinate.
+pub fn motion_subspace(g: &Graph, kind: &JointKind) -> Vec<(Vec3, Vec3)> {
+    match kind {
+        JointKind::Revolute { axis_in_joint } => {
+            vec![(Vec3::zero(g), Vec3::constant(g, *axis_in_joint))]
+        }
+        JointKind::Prismatic { axis_in_joint } => {
+            vec![(Vec3::constant(g, *axis_in_joint), Vec3::zero(g))]
+        }
+        JointKind::Free => (0..6)
+            .map(|k| {
+                let unit = |j: usize| {
+                    let mut e = [0.0; 3];
+                    e[j] = 1.0;
+                    Vec3::constant(g, e)
+                };
+                if k < 3 {
+                    (unit(k), Vec3::zero(g))
+                } else {
+                    (Vec3::zero(g), unit(k - 3))
+                }
+            })
+            .collect(),
+    }
 }

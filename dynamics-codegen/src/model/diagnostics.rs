@@ -15,11 +15,6 @@ impl Diagnostics {
         self.errors.push(span.into().error(message));
     }
 
-    /// Records an already-built error.
-    pub fn push(&mut self, error: syn::Error) {
-        self.errors.push(error);
-    }
-
     /// Whether any error was recorded.
     pub fn has_errors(&self) -> bool {
         !self.errors.is_empty()
@@ -27,7 +22,7 @@ impl Diagnostics {
 
     /// `Ok` when no error was recorded, else all of them combined into one `syn::Error`
     /// (which expands to one `compile_error!` per message).
-    pub fn into_result(&mut self) -> Result<(), syn::Error> {
+    pub fn take_result(&mut self) -> Result<(), syn::Error> {
         let mut errors = std::mem::take(&mut self.errors).into_iter();
         match errors.next() {
             None => Ok(()),

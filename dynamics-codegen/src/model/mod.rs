@@ -14,6 +14,7 @@
 mod diagnostics;
 pub(crate) mod linear;
 mod resolve;
+mod resolved;
 mod rules;
 pub mod statics;
 mod tree;
@@ -168,6 +169,18 @@ pub enum JointKind {
     Free,
 }
 
+impl JointKind {
+    /// The number of velocity coordinates the joint gives its body: 6 for a free joint, 1
+    /// otherwise.
+    #[must_use]
+    pub fn dofs(&self) -> usize {
+        match self {
+            JointKind::Free => 6,
+            JointKind::Revolute { .. } | JointKind::Prismatic { .. } => 1,
+        }
+    }
+}
+
 /// The joint that moves a body of the tree.
 #[derive(Clone, Debug)]
 pub struct Joint {
@@ -229,7 +242,9 @@ pub use syntax::LoadKind;
 pub struct Load {
     /// Its name.
     pub name: String,
-    /// Its doc comments.
+    /// Its doc comments (not yet printed: the loads' section of the generated docs comes
+    /// with the language reference).
+    #[allow(dead_code)]
     pub docs: Vec<String>,
     /// Force, couple or wrench.
     pub kind: LoadKind,
@@ -334,9 +349,9 @@ pub fn lower(mechanism: &syntax::Mechanism) -> Result<Model, syn::Error> {
     let mut diagnostics = Diagnostics::default();
     let resolved = resolve::resolve(mechanism, &mut diagnostics);
     rules::check_all(mechanism, &resolved, &mut diagnostics);
-    diagnostics.into_result()?;
+    diagnostics.take_result()?;
     let model = tree::build(mechanism, &resolved, &mut diagnostics);
-    diagnostics.into_result()?;
+    diagnostics.take_result()?;
     model.ok_or_else(|| syn::Error::new(Span::call_site(), "the mechanism could not be built"))
 }
 

@@ -5,54 +5,10 @@
 //! constant makes sense, missing fields) and carries every span on, for the rules.
 
 use super::linear;
+use super::resolved::{Resolved, ResolvedBody, ResolvedJoint};
 use super::value::{rotate_matrix, Mat3, Value, Vec3};
 use super::{rules, Diagnostics, Outputs, Parameter};
 use crate::syntax::{self, Axis, InertiaForm, Number, NumberValue, Rotation, ShapeKind, SpanRange};
-
-/// A body with resolved numbers.
-pub(crate) struct ResolvedBody {
-    pub docs: Vec<String>,
-    pub name: syntax::Name,
-    pub mass: Value,
-    pub mass_span: SpanRange,
-    pub com: Vec3,
-    pub inertia: Mat3,
-    pub inertia_span: SpanRange,
-}
-
-/// A joint with resolved numbers.
-pub(crate) struct ResolvedJoint {
-    pub docs: Vec<String>,
-    pub name: syntax::Name,
-    pub kind: syntax::JointKind,
-    pub parent: syntax::Name,
-    pub child: syntax::Name,
-    /// The axis as given, and its span (revolute and prismatic only).
-    pub axis: Option<([f64; 3], SpanRange)>,
-    pub translation: Vec3,
-    pub rotation: [[f64; 3]; 3],
-    pub rotation_span: SpanRange,
-    pub armature: (Value, SpanRange),
-    pub damping: (Value, SpanRange),
-}
-
-/// The whole declaration, resolved.
-pub(crate) struct Resolved {
-    pub parameters: Vec<Parameter>,
-    pub parameter_used: Vec<bool>,
-    pub bodies: Vec<ResolvedBody>,
-    pub joints: Vec<ResolvedJoint>,
-    pub outputs: Outputs,
-    pub skip_triangle_inequality: bool,
-    pub gravity: [f64; 3],
-}
-
-impl Resolved {
-    /// Nominal values of the parameters.
-    pub fn nominal_parameters(&self) -> Vec<f64> {
-        self.parameters.iter().map(|p| p.nominal).collect()
-    }
-}
 
 struct Resolver<'d> {
     names: Vec<String>,

@@ -10,7 +10,7 @@
 //! [`computed`], so that rounding noise such as `0.30000000000000004` does not show.
 
 use super::linear::{self, Matrix3};
-use super::resolve::{Resolved, ResolvedBody, ResolvedJoint};
+use super::resolved::{Resolved, ResolvedBody, ResolvedJoint};
 use super::value::{nominal33, Mat3, Value};
 use super::{Diagnostics, Outputs};
 use crate::syntax::{self, JointKind, Name, SpanRange};

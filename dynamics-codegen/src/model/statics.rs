@@ -20,7 +20,7 @@
 //! in another.
 
 use super::linear;
-use super::resolve::Resolved;
+use super::resolved::Resolved;
 use super::value::{self, Value, Vec3};
 use super::{Body, Diagnostics, JointKind};
 use crate::syntax::{self, SpanRange};
@@ -41,8 +41,6 @@ pub struct Connection {
     pub point_in_first: Vec3,
     /// The connection point on the second body, in its tree-body frame.
     pub point_in_second: Vec3,
-    /// Rotation from the first end's declared frame to its tree-body frame.
-    pub rotation_in_first: [[f64; 3]; 3],
     /// Whether it is a declared constraint (a support or a loop closure), whose components
     /// are also loop-closure equations φ(q) = 0.
     pub closes_loop: bool,
@@ -262,7 +260,6 @@ pub(crate) fn build(
             second: Some(i),
             point_in_first: joint.translation_in_parent.clone(),
             point_in_second: std::array::from_fn(|_| Value::constant(0.0)),
-            rotation_in_first: E,
             closes_loop: false,
         });
         match joint.kind {
@@ -434,7 +431,6 @@ fn declare_constraint(
         second: second.0,
         point_in_first: first.2,
         point_in_second: second.2,
-        rotation_in_first: rotation,
         closes_loop: true,
     });
     match kind {

@@ -7,7 +7,7 @@
 //! a merged body are re-based the same way.
 
 use super::linear::{self, Matrix3, Vector3};
-use super::resolve::Resolved;
+use super::resolved::Resolved;
 use super::rules::{self, GROUND};
 use super::value::{self, nominal3, Value, Vec3};
 use super::{Body, DeclaredBody, DeclaredJoint, Diagnostics, Joint, JointKind, Load, Model, Part};

@@ -1,8 +1,12 @@
 //! What is computed from a finished graph: the live set of some outputs, their operation
 //! count, their value in `f64`, and a readable dump.
 
-use super::{Graph, InputRef, Node, Op};
-use std::fmt::{self, Write as _};
+#[cfg(test)]
+use super::InputRef;
+use super::{Graph, Node, Op};
+use std::fmt;
+#[cfg(test)]
+use std::fmt::Write as _;
 
 /// The nodes that some outputs need, directly or through operands. Everything else in the
 /// graph is dead code and is not emitted.
@@ -13,6 +17,7 @@ pub struct LiveSet {
 
 impl LiveSet {
     /// Whether `node` is live.
+    #[cfg(test)]
     #[must_use]
     pub fn contains(&self, node: Node) -> bool {
         self.live.get(node.index()).copied().unwrap_or(false)
@@ -138,6 +143,7 @@ impl Graph {
     /// Only live nodes are evaluated, in the graph's order, exactly as the emitted code
     /// would compute them for `T = f64`.
     #[must_use]
+    #[cfg(test)]
     pub fn eval(&self, input: impl Fn(InputRef) -> f64, outputs: &[Node]) -> Vec<f64> {
         let live = self.live(outputs);
         let ops = self.inner.borrow();
@@ -163,6 +169,7 @@ impl Graph {
     /// The live part of the graph for `outputs`, one `vN = …` line per node, then the
     /// outputs; for debugging and test failure messages.
     #[must_use]
+    #[cfg(test)]
     pub fn dump(&self, outputs: &[Node]) -> String {
         let mut text = String::new();
         for node in self.live(outputs).nodes() {

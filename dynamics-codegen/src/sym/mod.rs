@@ -39,7 +39,6 @@
 
 mod analysis;
 mod derivative;
-mod latency;
 mod linalg;
 mod rules;
 
@@ -55,7 +54,7 @@ use std::fmt;
 /// Ids are dense indices into the graph's node list, in creation order, so a node's
 /// operands always have smaller ids.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct Node(u32);
+pub struct Node(pub(crate) u32);
 
 impl Node {
     /// The position of this node in its graph's node list.
@@ -252,12 +251,6 @@ impl Graph {
         self.inner.borrow().ops.len()
     }
 
-    /// Whether the graph has no nodes.
-    #[must_use]
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
     /// What `node` computes.
     ///
     /// # Panics
@@ -285,7 +278,7 @@ impl Graph {
     /// The node computing `op`: the existing one if there is one (hash-consing), else a new
     /// node at the end of the list. No rule is applied here; the public builders apply the
     /// rules and then call this with an operation in canonical form.
-    fn intern(&self, op: Op) -> Node {
+    pub(crate) fn intern(&self, op: Op) -> Node {
         let mut nodes = self.inner.borrow_mut();
         if let Some(&node) = nodes.index.get(&op) {
             return node;

@@ -199,25 +199,6 @@ impl Graph {
         }
     }
 
-    /// `node` computed without a trailing negation where one costs nothing: −(a − b) as
-    /// b − a and −(c·x) as (−c)·x for a constant c; any other node as it is. For outputs
-    /// only, after the graph is built: the nodes it makes are outside the canonical forms
-    /// the builders produce, so the builders never reuse them.
-    pub fn settled(&self, node: Node) -> Node {
-        let Op::Neg(x) = self.op(node) else {
-            return node;
-        };
-        match self.op(x) {
-            Op::Sub(a, b) => self.intern(Op::Sub(b, a)),
-            Op::Mul(a, b) => match (self.constant_value(a), self.constant_value(b)) {
-                (Some(c), _) => self.intern(Op::Mul(self.constant(-c), b)),
-                (None, Some(c)) => self.intern(Op::Mul(a, self.constant(-c))),
-                (None, None) => node,
-            },
-            _ => node,
-        }
-    }
-
     /// `sin a`; folds constants.
     pub fn sin(&self, a: Node) -> Node {
         match self.constant_value(a) {

@@ -71,132 +71,17 @@
 //! (a mechanism declared with `isa: baseline;`), its pieces then `#[inline(never)]`
 //! functions called in turn.
 //!
-//! # Splitting long functions
-//!
-//! rustc overflows its stack on very long functions in debug builds, and its compile time
-//! grows faster than the length, so a body of more than [`FunctionSpec::split_threshold`]
-//! statements is cut into pieces of about equal length. Each piece is a kernel of its own,
-//! nested inside the emitted function (so the emitted code stays a single item, usable at
-//! module level or in an `impl` block), run by `T::run_piece`, which keeps either copy out
-//! of line; the emitted function only chains them:
-//!
-//! ```text
-//! pub fn f<T: Scalar>(q: &[T; 7], v: &[T; 7]) -> [T; 7] {
-//!     #[inline(always)]
-//!     fn part_1<T: Scalar, const WIDE: bool>(q: &[T; 7], v: &[T; 7]) -> [T; 40] { … }
-//!     #[inline(always)]
-//!     fn part_2<T: Scalar, const WIDE: bool>(q: &[T; 7], carry: &[T; 40]) -> [T; 35] {
-//!         let [v12, v17, …] = *carry;
-//!         …
-//!     }
-//!     …
-//!     let carry_1 = T::run_piece(
-//!         #[inline(always)]
-//!         || part_1::<T, true>(q, v),
-//!         #[inline(always)]
-//!         || part_1::<T, false>(q, v),
-//!     );
-//!     …
-//! }
-//! ```
-//!
-//! The values crossing the boundary before piece `k + 1` — computed in piece `k` or
-//! earlier, used in piece `k + 1` or later or as an output — travel in one array
-//! `carry_k: [T; K]`, in id order, passed by reference. A piece returns the values crossing
-//! the next boundary: those it computes and
-//! those it passes through from its own `carry`. Constants and inputs are never carried:
-//! each piece re-reads the inputs and re-creates the constants it uses (both are free).
-//! The last piece returns the function's output.
 
-use crate::sym::{Array, Graph, LiveSet, Node, Op, OpCount};
+use crate::ir::{FunctionSpec, Output};
+use crate::passes::fusion::Fused;
+use crate::schedule::{Plan, Step};
+use crate::sym::{Array, Graph, Node, Op, OpCount};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::{BTreeSet, HashMap};
 
-/// The default [`FunctionSpec::split_threshold`]: 2500 statements (inputs, constants and
-/// operations). Each piece re-creates the constants and inputs it reads, so pieces come out
-/// somewhat longer, but below ~3000 `let`s, where rustc (LLVM's debug-info scopes, one per
-/// `let`, walked recursively) overflows its stack in debug builds. Each cut costs
-/// at run time: the values crossing it go through memory, and the optimizer sees one piece
-/// at a time. The quadruped's Coriolis matrix, cut in three at the earlier threshold of
-/// 1500 live nodes, took 0.72 of the time whole (paired, `models/tools/generated_ab.sh`),
-/// and compiled no slower.
-pub const DEFAULT_SPLIT_THRESHOLD: usize = 2500;
-
-/// One argument of the emitted function: `name: &[T; len]`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Arg {
-    /// The input array (its [`Array::name`] is the argument's name).
-    pub array: Array,
-    /// The array's length.
-    pub len: usize,
-}
-
-/// What the emitted function returns, and from which nodes.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Output {
-    /// `T`.
-    Scalar(Node),
-    /// `[T; N]`.
-    Vector(Vec<Node>),
-    /// `[[T; C]; R]`, given as `R` rows of `C` nodes.
-    Matrix(Vec<Vec<Node>>),
-    /// A tuple of outputs, e.g. `([[T; 7]; 7], [T; 7])`.
-    Tuple(Vec<Output>),
-}
-
+/// The printed form of an output: its type and the expression that builds it.
 impl Output {
-    /// Every node of the output, in order (repeats kept).
-    #[must_use]
-    pub fn nodes(&self) -> Vec<Node> {
-        let mut nodes = Vec::new();
-        self.collect_nodes(&mut nodes);
-        nodes
-    }
-
-    /// The same output with a sign left on an output by the builders' orientation rule
-    /// folded into the operation under it ([`Graph::settled`]), where nothing else uses
-    /// that operation: a shared product or difference keeps its negation (one sign flip)
-    /// rather than being computed a second time.
-    #[must_use]
-    pub fn settled(&self, graph: &Graph) -> Output {
-        let nodes = self.nodes();
-        let uses = graph.live(&nodes).use_counts(&graph.ops(), &nodes);
-        self.map(&|n| match graph.op(n) {
-            Op::Neg(x) if uses[x.index()] == 1 => graph.settled(n),
-            _ => n,
-        })
-    }
-
-    /// The same output in a new graph whose sums and products combine their earliest-ready
-    /// terms first ([`Graph::regrouped`]).
-    #[must_use]
-    pub fn regrouped(&self, graph: &Graph) -> (Graph, Output) {
-        let old = self.nodes();
-        let (graph, new) = graph.regrouped(&old);
-        let map: HashMap<Node, Node> = old.into_iter().zip(new).collect();
-        (graph, self.map(&|n| map[&n]))
-    }
-
-    fn map(&self, f: &impl Fn(Node) -> Node) -> Output {
-        let row = |nodes: &[Node]| nodes.iter().map(|&n| f(n)).collect();
-        match self {
-            Output::Scalar(n) => Output::Scalar(f(*n)),
-            Output::Vector(v) => Output::Vector(row(v)),
-            Output::Matrix(rows) => Output::Matrix(rows.iter().map(|r| row(r)).collect()),
-            Output::Tuple(items) => Output::Tuple(items.iter().map(|o| o.map(f)).collect()),
-        }
-    }
-
-    fn collect_nodes(&self, nodes: &mut Vec<Node>) {
-        match self {
-            Output::Scalar(n) => nodes.push(*n),
-            Output::Vector(v) => nodes.extend(v),
-            Output::Matrix(rows) => rows.iter().for_each(|r| nodes.extend(r)),
-            Output::Tuple(items) => items.iter().for_each(|o| o.collect_nodes(nodes)),
-        }
-    }
-
     /// The Rust type, with `T` the scalar.
     fn ty(&self) -> TokenStream {
         match self {
@@ -248,63 +133,13 @@ impl Output {
     }
 }
 
-/// Everything [`emit_function`] needs besides the graph.
-#[derive(Clone, Debug)]
-pub struct FunctionSpec {
-    /// The function's name.
-    pub name: Ident,
-    /// Its visibility (`pub` by default).
-    pub vis: syn::Visibility,
-    /// What it computes, for its doc comment (may span several lines; the op count line is
-    /// appended).
-    pub doc: String,
-    /// The path of the scalar trait, e.g. `::dynamics_runtime::Scalar`.
-    pub scalar_trait: syn::Path,
-    /// The arguments, in order. Every input the outputs read must be covered.
-    pub args: Vec<Arg>,
-    /// The return value.
-    pub output: Output,
-    /// Split into pieces when the body would have more statements than this (see the
-    /// module docs).
-    pub split_threshold: usize,
-    /// Emit the AVX2 + FMA copy and the run-time choice where worth it (the default), or
-    /// the baseline copy alone (`isa: baseline;`).
-    pub dispatch: bool,
-}
-
-impl FunctionSpec {
-    /// A public function `name` over `scalar_trait`, with no doc text and the default split
-    /// threshold.
-    #[must_use]
-    pub fn new(name: &str, scalar_trait: syn::Path, args: Vec<Arg>, output: Output) -> Self {
-        FunctionSpec {
-            name: Ident::new(name, Span::call_site()),
-            vis: syn::parse_quote!(pub),
-            doc: String::new(),
-            scalar_trait,
-            args,
-            output,
-            split_threshold: DEFAULT_SPLIT_THRESHOLD,
-            dispatch: true,
-        }
-    }
-}
-
-/// The function described by `spec`, computing its outputs from `graph`; see the module
-/// documentation for its shape.
-///
-/// # Panics
-/// If a live input is not covered by `spec.args` (array missing or index out of range):
-/// that is a bug of the caller, not of the user's model.
+/// The function described by `spec`, its statements in the order and pieces of `plan`
+/// (made for this graph and spec by [`Plan::new`]); see the module documentation for its
+/// shape.
 #[must_use]
-pub fn emit_function(graph: &Graph, spec: &FunctionSpec) -> TokenStream {
+pub(crate) fn function(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> TokenStream {
     let outputs = spec.output.nodes();
-    let live = graph.live(&outputs);
     let ops = graph.ops();
-    check_inputs(&ops, &live, &spec.args);
-
-    let fused = fusions(&ops, &live, &outputs);
-    let plan = Plan::new(&ops, &live, &outputs, fused, spec.split_threshold);
     let trait_ = &spec.scalar_trait;
     let name = &spec.name;
     let vis = &spec.vis;
@@ -365,7 +200,7 @@ pub fn emit_function(graph: &Graph, spec: &FunctionSpec) -> TokenStream {
 /// Functions with fewer operations than this, and sines and cosines of at most one
 /// angle, run their baseline copy only: the run-time choice and the call it costs (a
 /// nanosecond or two) would outweigh what the wide copy saves.
-pub const MIN_DISPATCHED_OPS: usize = 32;
+pub(crate) const MIN_DISPATCHED_OPS: usize = 32;
 
 /// Whether a function of `count` operations gets the AVX2 + FMA copy and the run-time
 /// choice between the two: from [`MIN_DISPATCHED_OPS`] operations, or with two angles'
@@ -402,165 +237,13 @@ fn doc_attrs(doc: &str, count: &OpCount) -> Vec<TokenStream> {
     lines.iter().map(|l| quote!(#[doc = #l])).collect()
 }
 
-/// Asserts that every live input is an element of one of the arguments.
-fn check_inputs(ops: &[Op], live: &LiveSet, args: &[Arg]) {
-    for node in live.nodes() {
-        if let Op::Input(r) = ops[node.index()] {
-            let arg = args.iter().find(|a| a.array == r.array);
-            assert!(
-                arg.is_some_and(|a| (r.index as usize) < a.len),
-                "input {r} is not covered by the function's arguments {args:?}"
-            );
-        }
-    }
-}
-
 /// The variable holding `node`'s value.
 fn var(node: Node) -> Ident {
     format_ident!("{}", node.to_string())
 }
 
-/// One statement computing a non-leaf node, a `sin`/`cos` pair, or the sines and cosines
-/// of several inputs at once.
-#[derive(Clone, Debug)]
-enum Step {
-    One(Node),
-    SinCos {
-        sin: Node,
-        cos: Node,
-        arg: Node,
-    },
-    /// `T::sin_cos_array` of inputs, with the (optional) sine and cosine node of each.
-    Batch(Vec<BatchedAngle>),
-}
-
-/// One angle of a [`Step::Batch`]: an input leaf and whichever of its sine and cosine is live.
-#[derive(Clone, Copy, Debug)]
-struct BatchedAngle {
-    arg: Node,
-    sin: Option<Node>,
-    cos: Option<Node>,
-}
-
-impl Step {
-    fn defines(&self) -> Vec<Node> {
-        match self {
-            Step::One(n) => vec![*n],
-            Step::SinCos { sin, cos, .. } => vec![*sin, *cos],
-            Step::Batch(angles) => angles
-                .iter()
-                .flat_map(|a| a.sin.into_iter().chain(a.cos))
-                .collect(),
-        }
-    }
-}
-
-/// One piece of the body: a range of steps, the leaves they read, the arrays those leaves
-/// come from, and the values carried in from earlier pieces.
-#[derive(Debug, Default)]
-struct Piece {
-    steps: Vec<Step>,
-    leaves: BTreeSet<Node>,
-    /// Arrays read in place by a [`Step::Batch`].
-    batch_arrays: BTreeSet<Array>,
-    arrays: BTreeSet<Array>,
-    carry_in: Vec<Node>,
-}
-
-/// The schedule of the whole function: steps in order, cut into pieces.
-struct Plan {
-    pieces: Vec<Piece>,
-    /// The sums and differences that take a product in ([`fusions`]).
-    fused: HashMap<Node, Fused>,
-}
-
+/// The printed pieces of a [`Plan`].
 impl Plan {
-    fn new(
-        ops: &[Op],
-        live: &LiveSet,
-        outputs: &[Node],
-        fused: HashMap<Node, Fused>,
-        threshold: usize,
-    ) -> Self {
-        let steps = schedule(ops, live, outputs, &fused);
-        // The inputs and constants read count too: the whole body's statements.
-        let leaves = live.nodes().filter(|n| ops[n.index()].is_leaf()).count();
-        let n_pieces = (steps.len() + leaves).div_ceil(threshold.max(1)).max(1);
-        let per_piece = steps.len().div_ceil(n_pieces).max(1);
-        let mut pieces: Vec<Piece> = steps
-            .chunks(per_piece)
-            .map(|chunk| Piece {
-                steps: chunk.to_vec(),
-                ..Piece::default()
-            })
-            .collect();
-        if pieces.is_empty() {
-            pieces.push(Piece::default());
-        }
-        let last = pieces.len() - 1;
-
-        // Where each non-leaf node is defined and last used (`pieces.len()` = an output).
-        let mut defined_in = HashMap::new();
-        let mut last_use: HashMap<Node, usize> = HashMap::new();
-        for (p, piece) in pieces.iter_mut().enumerate() {
-            for step in &piece.steps {
-                defined_in.extend(step.defines().into_iter().map(|n| (n, p)));
-                let operands: Vec<Node> = match step {
-                    Step::One(n) => match fused.get(n) {
-                        Some(f) => vec![f.x, f.y, f.c],
-                        None => ops[n.index()].children().collect(),
-                    },
-                    Step::SinCos { arg, .. } => vec![*arg],
-                    Step::Batch(angles) => {
-                        // Read in place, not through a `let` of the leaf: only the array.
-                        piece.batch_arrays.extend(angles.iter().filter_map(|a| {
-                            match ops[a.arg.index()] {
-                                Op::Input(r) => Some(r.array),
-                                _ => None,
-                            }
-                        }));
-                        Vec::new()
-                    }
-                };
-                for child in operands {
-                    if ops[child.index()].is_leaf() {
-                        piece.leaves.insert(child);
-                    } else {
-                        let l = last_use.entry(child).or_insert(p);
-                        *l = (*l).max(p);
-                    }
-                }
-            }
-        }
-        for &out in outputs {
-            if ops[out.index()].is_leaf() {
-                pieces[last].leaves.insert(out);
-            } else {
-                last_use.insert(out, pieces.len());
-            }
-        }
-
-        for (p, piece) in pieces.iter_mut().enumerate() {
-            piece.arrays = piece
-                .leaves
-                .iter()
-                .filter_map(|n| match ops[n.index()] {
-                    Op::Input(r) => Some(r.array),
-                    _ => None,
-                })
-                .chain(piece.batch_arrays.iter().copied())
-                .collect();
-            let mut carry: Vec<Node> = last_use
-                .iter()
-                .filter(|&(n, &l)| defined_in[n] < p && p <= l)
-                .map(|(&n, _)| n)
-                .collect();
-            carry.sort_unstable();
-            piece.carry_in = carry;
-        }
-        Plan { pieces, fused }
-    }
-
     /// The statements of piece `p` and its result: the next piece's carry, or `output`.
     fn piece_body(&self, ops: &[Op], p: usize, output: &Output) -> TokenStream {
         let piece = &self.pieces[p];
@@ -666,179 +349,6 @@ impl Plan {
 
 /// The live non-leaf nodes as statements, in [`depth_first`] order: the sines and cosines
 /// of two or more inputs merged into one [`Step::Batch`] at the first of them, other
-/// `sin x`/`cos x` pairs into one `sin_cos` step at the first of the two.
-fn schedule(
-    ops: &[Op],
-    live: &LiveSet,
-    outputs: &[Node],
-    fused: &HashMap<Node, Fused>,
-) -> Vec<Step> {
-    let folded: BTreeSet<Node> = fused.values().map(|f| f.product).collect();
-    let mut sin_of = HashMap::new();
-    let mut cos_of = HashMap::new();
-    for node in live.nodes() {
-        match ops[node.index()] {
-            Op::Sin(x) => {
-                sin_of.insert(x, node);
-            }
-            Op::Cos(x) => {
-                cos_of.insert(x, node);
-            }
-            _ => {}
-        }
-    }
-    let is_input = |x: &Node| matches!(ops[x.index()], Op::Input(_));
-    let batched: BTreeSet<Node> = sin_of
-        .keys()
-        .chain(cos_of.keys())
-        .copied()
-        .filter(is_input)
-        .collect();
-    let batch = (batched.len() >= 2).then(|| {
-        batched
-            .iter()
-            .map(|&arg| BatchedAngle {
-                arg,
-                sin: sin_of.get(&arg).copied(),
-                cos: cos_of.get(&arg).copied(),
-            })
-            .collect::<Vec<_>>()
-    });
-
-    let mut steps = Vec::new();
-    let mut batch_done = false;
-    let mut paired = BTreeSet::new();
-    for node in depth_first(ops, live, outputs) {
-        let op = ops[node.index()];
-        if let (Op::Sin(x) | Op::Cos(x), Some(angles)) = (op, &batch) {
-            if batched.contains(&x) {
-                if !batch_done {
-                    batch_done = true;
-                    steps.push(Step::Batch(angles.clone()));
-                }
-                continue; // computed by the batch
-            }
-        }
-        let pair = match op {
-            Op::Sin(x) | Op::Cos(x) => sin_of.get(&x).zip(cos_of.get(&x)).map(|(&s, &c)| (x, s, c)),
-            _ => None,
-        };
-        match pair {
-            Some((arg, sin, cos)) if paired.insert(arg) => {
-                steps.push(Step::SinCos { sin, cos, arg });
-            }
-            Some(_) => {} // the second of a pair, computed with the first
-            None if !op.is_leaf() && !folded.contains(&node) => steps.push(Step::One(node)),
-            None => {}
-        }
-    }
-    steps
-}
-
-/// The order of the statements: depth-first from the outputs, last output first, each
-/// node right after its operands, the operand that needs more registers (its Sethi–Ullman
-/// number) first. A value is then computed close to where it is used, so fewer values are
-/// live at once, fewer spill to the stack and fewer cross from one piece to the next.
-/// Measured in one process against the order of node creation, alternating, 41 rounds
-/// (`models/tools/generated_ab.sh`): the quadruped's Coriolis matrix 0.80 of the time
-/// (values carried between its pieces 377 + 492 → 244 + 373) and its forward dynamics
-/// 0.82; its other functions and the Panda's within the run-to-run spread (±5 %). Both
-/// choices count:
-/// taking the first output first gave the Coriolis matrix only 0.95, and the operand order
-/// gave most of the forward dynamics' gain.
-fn depth_first(ops: &[Op], live: &LiveSet, outputs: &[Node]) -> Vec<Node> {
-    let mut need = vec![0_u32; ops.len()];
-    for node in live.nodes() {
-        let mut needs: Vec<u32> = ops[node.index()]
-            .children()
-            .map(|c| need[c.index()])
-            .collect();
-        needs.sort_unstable_by(|a, b| b.cmp(a));
-        need[node.index()] = match needs.as_slice() {
-            [] => 1,
-            [a] => *a,
-            [a, b, ..] if a == b => a + 1,
-            [a, ..] => *a,
-        };
-    }
-    let mut placed = vec![false; ops.len()];
-    let mut order = Vec::with_capacity(live.count());
-    let mut stack: Vec<(Node, bool)> = Vec::new();
-    for &out in outputs.iter().rev() {
-        stack.push((out, false));
-        while let Some((node, operands_placed)) = stack.pop() {
-            if placed[node.index()] {
-                continue;
-            }
-            if operands_placed {
-                placed[node.index()] = true;
-                order.push(node);
-                continue;
-            }
-            stack.push((node, true));
-            let mut operands: Vec<Node> = ops[node.index()]
-                .children()
-                .filter(|c| !placed[c.index()])
-                .collect();
-            // The most demanding operand first (ties in operand order); pushed last, popped first.
-            operands.sort_by_key(|c| std::cmp::Reverse(need[c.index()]));
-            stack.extend(operands.into_iter().rev().map(|c| (c, false)));
-        }
-    }
-    order
-}
-
-/// A sum or difference with a product folded in: ±x·y ± c as `T::mul_add(±x, y, ±c)`.
-#[derive(Clone, Copy, Debug)]
-struct Fused {
-    /// The product's node, no longer computed on its own.
-    product: Node,
-    x: Node,
-    y: Node,
-    c: Node,
-    negate_product: bool,
-    negate_addend: bool,
-}
-
-/// The sums and differences that take in a product nothing else uses: `a·b + c`,
-/// `a·b − c` and `c − a·b` become `T::mul_add(a, b, c)`, `T::mul_add(a, b, −c)` and
-/// `T::mul_add(−a, b, c)`. Without fused multiply-add hardware `mul_add` is `a·b + c`, the
-/// same two roundings as before (x + (−y) and x − y are the same IEEE operation); built for
-/// a CPU with FMA (`-C target-cpu=native`) it is one instruction and one rounding.
-fn fusions(ops: &[Op], live: &LiveSet, outputs: &[Node]) -> HashMap<Node, Fused> {
-    let uses = live.use_counts(ops, outputs);
-    let product = |n: Node| match ops[n.index()] {
-        Op::Mul(x, y) if uses[n.index()] == 1 => Some((n, x, y)),
-        _ => None,
-    };
-    let mut fused = HashMap::new();
-    for n in live.nodes() {
-        let f = match ops[n.index()] {
-            Op::Add(a, b) => product(a)
-                .map(|p| (p, b, false, false))
-                .or_else(|| product(b).map(|p| (p, a, false, false))),
-            Op::Sub(a, b) => product(a)
-                .map(|p| (p, b, false, true))
-                .or_else(|| product(b).map(|p| (p, a, true, false))),
-            _ => None,
-        };
-        if let Some(((product, x, y), c, negate_product, negate_addend)) = f {
-            fused.insert(
-                n,
-                Fused {
-                    product,
-                    x,
-                    y,
-                    c,
-                    negate_product,
-                    negate_addend,
-                },
-            );
-        }
-    }
-    fused
-}
-
 /// `let vN = …;` for a single node.
 fn let_node(node: Node, op: Op) -> TokenStream {
     let v = var(node);
@@ -956,7 +466,7 @@ fn f64_literal(x: f64) -> TokenStream {
 /// array the straight-line function takes); results are moved into nalgebra storage.
 /// `nalgebra` is the path of the nalgebra crate as the generated code sees it.
 #[must_use]
-pub fn emit_nalgebra_wrapper(spec: &FunctionSpec, nalgebra: &TokenStream) -> TokenStream {
+pub(crate) fn nalgebra_wrapper(spec: &FunctionSpec, nalgebra: &TokenStream) -> TokenStream {
     let name = &spec.name;
     let wrapper = format_ident!("{}_na", spec.name);
     let vis = &spec.vis;
@@ -1004,10 +514,19 @@ pub fn emit_nalgebra_wrapper(spec: &FunctionSpec, nalgebra: &TokenStream) -> Tok
 
 #[cfg(test)]
 mod tests {
-    use super::{emit_function, f64_literal, Arg, FunctionSpec, Output};
+    use super::f64_literal;
+    use crate::ir::{Arg, FunctionSpec, Output};
+    use crate::passes::{fusion, signs};
+    use crate::schedule::Plan;
     use crate::sym::{Array, Graph, InputRef, Node};
     use proc_macro2::TokenStream;
     use std::fmt::Write as _;
+
+    /// The function as the pipeline prints it: fusion, schedule, print.
+    fn emit_function(g: &Graph, spec: &FunctionSpec) -> TokenStream {
+        let plan = Plan::new(g, spec, fusion::fuse(g, &spec.output));
+        super::function(g, spec, &plan)
+    }
 
     fn pretty(tokens: TokenStream) -> String {
         let item: syn::ItemFn = syn::parse2(tokens).expect("emitted code parses as a function");
@@ -1046,7 +565,7 @@ mod tests {
             shared,
         ];
         // settled as the expansion's functions are (x·c − y is built as −(y − x·c))
-        let output = Output::Vector(outputs).settled(&g);
+        let output = signs::settle(&g, &Output::Vector(outputs));
         let spec = spec("f", &[(Array::Q, 3)], output);
         let text = pretty(emit_function(&g, &spec));
         for line in [
@@ -1058,34 +577,6 @@ mod tests {
         }
         assert_eq!(text.matches("T::mul_add").count(), 3, "{text}");
         assert!(text.contains("v2 * v2"), "{text}");
-    }
-
-    /// A sign on an output folds into the operation under it when nothing else uses that
-    /// operation, and stays a negation when something does (no product computed twice).
-    #[test]
-    fn output_signs_fold_only_into_unshared_operations() {
-        use crate::sym::Op;
-        let g = Graph::new();
-        let (x, y) = (g.input(Array::Q, 0), g.input(Array::Q, 1));
-        let half = g.constant(0.5);
-        let alone = g.neg(g.mul(x, half)); // −(x·0.5), the product used only here
-        let shared = g.mul(y, half);
-        let difference = g.sub(y, x); // −(x − y) in the graph's orientation
-        let out = Output::Vector(vec![alone, g.neg(shared), shared, difference]);
-        let Output::Vector(settled) = out.settled(&g) else {
-            unreachable!("a vector stays a vector")
-        };
-        assert_eq!(g.op(settled[0]), Op::Mul(x, g.constant(-0.5)));
-        assert_eq!(
-            g.op(settled[1]),
-            Op::Neg(shared),
-            "the shared product is not redone"
-        );
-        assert_eq!(settled[2], shared);
-        assert_eq!(g.op(settled[3]), Op::Sub(y, x));
-        let before = g.eval(|r| [0.3, -1.7][r.index as usize], &out.nodes());
-        let after = g.eval(|r| [0.3, -1.7][r.index as usize], &settled);
-        assert_eq!(before, after);
     }
 
     /// Pendulum-like: τ = m·l²·a + m·g·l·sin q, plus cos q·v as a second output.

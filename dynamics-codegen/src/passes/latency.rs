@@ -1,4 +1,5 @@
-//! Sums and products regrouped for latency: the same terms, combined earliest-ready first.
+//! The latency pass: sums and products regrouped so that the same terms combine
+//! earliest-ready first ([`regroup`], over a function's output; [`Graph::regrouped`]).
 //!
 //! The expansion writes a sum in the textbook's order, e.g. the forward sweep's
 //! α_i = Eᵀα_λ + s q̈ + (Eᵀω_λ) × s q̇ as ((c α_x − s α_y) + q̈) − q̇ ω_y: the term that waits
@@ -25,9 +26,11 @@
 //! that end up combined fold into one constant, so a regrouped function may need fewer
 //! operations than the textbook's order.
 
-use super::{Const, Graph, Node, Op};
+use crate::ir::Output;
+use crate::sym::{Const, Graph, Node, Op};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
+use std::collections::HashMap;
 
 /// Estimated latencies in cycles (a current x86-64 core; only their ratios matter): an
 /// addition, subtraction or product takes 4, a sign flip 1 (an `xor`), a division 14, a
@@ -187,6 +190,16 @@ impl Regrouping {
             }
         }
     }
+}
+
+/// The same output in a new graph whose sums and products combine their earliest-ready
+/// terms first ([`Graph::regrouped`]).
+#[must_use]
+pub(crate) fn regroup(graph: &Graph, output: &Output) -> (Graph, Output) {
+    let old = output.nodes();
+    let (graph, new) = graph.regrouped(&old);
+    let map: HashMap<Node, Node> = old.into_iter().zip(new).collect();
+    (graph, output.map(&|n| map[&n]))
 }
 
 impl Graph {

@@ -1,0 +1,803 @@
+//! The functions a mechanism can generate: [`CATALOG`] is the one list, in the order they
+//! are emitted. Each entry names the function, says when the model asks for it, which input
+//! arrays it reads, and how its graph is expanded from the textbook's recursions
+//! ([`crate::expand`]), with the base-parameter pass ([`crate::passes::base_parameters`])
+//! for the functions of the Lagrangian alone.
+//!
+//! | function | computes | from |
+//! | --- | --- | --- |
+//! | `inverse_dynamics(q, v, a)` | τ = M q̈ + C q̇ + g + b q̇ − Q | [`rnea`] |
+//! | `gravity(q)` | g(q) | [`rnea`] with q̇ = q̈ = 0 |
+//! | `bias(q, v)` | C q̇ + g + b q̇ | [`rnea`] with q̈ = 0 |
+//! | `mass_matrix(q)` | M(q) (armature on the diagonal) | [`crba`] |
+//! | `coriolis_matrix(q, v)` | C(q, q̇) with Ṁ − 2C skew-symmetric | [`coriolis`] |
+//! | `forward_dynamics(q, v, tau)` | q̈ = M⁻¹(τ + Q − C q̇ − g − b q̇) | [`aba`] or [`crba`] + [`ldlt`], whichever costs fewer operations |
+//! | `kinetic_energy(q, v)`, `potential_energy(q)` | T, V | [`energy`] |
+//! | `joint_reactions(q, v, a)` | [F; M_P] each joint transmits to its body | [`rnea`] |
+//! | `force_analysis(q, v, a)` | every reaction component and driving effort, with the pivots of R | [`statics`] + [`qr`] |
+//! | `constraint_residual(q)`, `constraint_jacobian(q)`, `constraint_bias(q, v)` | φ, Φ_q, γ of the loop closures | [`statics`] |
+//!
+//! Symbolic parameters add a `p` argument, declared loads a `loads` argument (Q).
+//!
+//! Inverse dynamics, gravity, bias, the mass matrix, the Coriolis matrix (Christoffel's,
+//! determined by M(q)) and forward dynamics depend on the inertias only through the
+//! Lagrangian, and are expanded over base inertial parameters; the energies, joint reactions
+//! and force analysis use the inertias as declared.
+//!
+//! To add a function: write its expansion (a module of [`crate::expand`]), then one
+//! [`Entry`] here.
+
+use crate::expand::geometry::BodyInertia;
+use crate::expand::rnea::{self, SweepInputs};
+use crate::expand::{aba, coriolis, crba, energy, fresh_graph, inputs, ldlt, qr, statics};
+use crate::ir::{Arg, Function, FunctionSpec, Output};
+use crate::model::Model;
+use crate::passes::base_parameters;
+use crate::sym::{Array, Graph, Node};
+
+/// One function of the catalog.
+pub(crate) struct Entry {
+    /// Its name in the generated code.
+    pub name: &'static str,
+    /// Whether the model asks for it.
+    pub wanted: fn(&Model) -> bool,
+    /// The input arrays it reads besides the parameters `p` (which every function takes
+    /// when the model declares any).
+    pub arrays: &'static [Array],
+    /// Whether it takes the `loads` input (when the model declares loads).
+    pub loads: bool,
+    /// Its graph, output and doc text.
+    pub expand: fn(&Model) -> Expanded,
+}
+
+/// What an expansion gives: the graph, the output's nodes and the doc text.
+pub(crate) struct Expanded {
+    /// The expression DAG.
+    pub graph: Graph,
+    /// The returned nodes.
+    pub output: Output,
+    /// What the function computes, for its doc comment.
+    pub doc: String,
+}
+
+/// Every function the language generates, in the order they are emitted.
+pub(crate) const CATALOG: &[Entry] = &[
+    Entry {
+        name: "inverse_dynamics",
+        wanted: |m| m.outputs.inverse_dynamics && m.nv > 0,
+        arrays: &[Array::Q, Array::V, Array::A],
+        loads: true,
+        expand: inverse_dynamics,
+    },
+    Entry {
+        name: "gravity",
+        wanted: |m| m.outputs.gravity && m.nv > 0,
+        arrays: &[Array::Q],
+        loads: false,
+        expand: gravity,
+    },
+    Entry {
+        name: "bias",
+        wanted: |m| m.outputs.bias && m.nv > 0,
+        arrays: &[Array::Q, Array::V],
+        loads: false,
+        expand: bias,
+    },
+    Entry {
+        name: "mass_matrix",
+        wanted: |m| m.outputs.mass_matrix && m.nv > 0,
+        arrays: &[Array::Q],
+        loads: false,
+        expand: mass_matrix,
+    },
+    Entry {
+        name: "coriolis_matrix",
+        wanted: |m| m.outputs.coriolis && m.nv > 0,
+        arrays: &[Array::Q, Array::V],
+        loads: false,
+        expand: coriolis_matrix,
+    },
+    Entry {
+        name: "forward_dynamics",
+        wanted: |m| m.outputs.forward_dynamics && m.nv > 0,
+        arrays: &[Array::Q, Array::V, Array::Tau],
+        loads: true,
+        expand: forward_dynamics,
+    },
+    Entry {
+        name: "forward_dynamics_aba",
+        wanted: |m| m.outputs.forward_dynamics_aba && m.nv > 0,
+        arrays: &[Array::Q, Array::V, Array::Tau],
+        loads: true,
+        expand: |m| forward_dynamics_named(m, ForwardMethod::ArticulatedBody),
+    },
+    Entry {
+        name: "forward_dynamics_ldlt",
+        wanted: |m| m.outputs.forward_dynamics_ldlt && m.nv > 0,
+        arrays: &[Array::Q, Array::V, Array::Tau],
+        loads: true,
+        expand: |m| forward_dynamics_named(m, ForwardMethod::MassMatrixLdlt),
+    },
+    Entry {
+        name: "kinetic_energy",
+        wanted: |m| m.outputs.energy,
+        arrays: &[Array::Q, Array::V],
+        loads: false,
+        expand: kinetic_energy,
+    },
+    Entry {
+        name: "potential_energy",
+        wanted: |m| m.outputs.energy,
+        arrays: &[Array::Q],
+        loads: false,
+        expand: potential_energy,
+    },
+    Entry {
+        name: "joint_reactions",
+        wanted: |m| m.outputs.reactions && m.nv > 0,
+        arrays: &[Array::Q, Array::V, Array::A],
+        loads: true,
+        expand: joint_reactions,
+    },
+    Entry {
+        name: "force_analysis",
+        wanted: |m| m.outputs.force_analysis && m.statics.is_some(),
+        arrays: &[Array::Q, Array::V, Array::A],
+        loads: true,
+        expand: force_analysis,
+    },
+    Entry {
+        name: "constraint_residual",
+        wanted: wants_constraints,
+        arrays: &[Array::Q],
+        loads: false,
+        expand: constraint_residual,
+    },
+    Entry {
+        name: "constraint_jacobian",
+        wanted: wants_constraints,
+        arrays: &[Array::Q],
+        loads: false,
+        expand: constraint_jacobian,
+    },
+    Entry {
+        name: "constraint_bias",
+        wanted: wants_constraints,
+        arrays: &[Array::Q, Array::V],
+        loads: false,
+        expand: constraint_bias,
+    },
+];
+
+impl Entry {
+    /// The arguments, in the fixed order q, v, a, tau, p, loads: the entry's arrays, `p`
+    /// when the model declares parameters, `loads` when the entry takes them and the model
+    /// declares loads.
+    pub fn args(&self, model: &Model) -> Vec<Arg> {
+        let order = [
+            Array::Q,
+            Array::V,
+            Array::A,
+            Array::Tau,
+            Array::P,
+            Array::Loads,
+        ];
+        order
+            .iter()
+            .filter(|&&a| match a {
+                Array::P => true,
+                Array::Loads => self.loads,
+                _ => self.arrays.contains(&a),
+            })
+            .filter_map(|&array| {
+                let len = match array {
+                    Array::Q => model.nq,
+                    Array::V | Array::A | Array::Tau => model.nv,
+                    Array::P => model.parameters.len(),
+                    Array::Loads => model.load_inputs,
+                };
+                (len > 0 || matches!(array, Array::Q | Array::V | Array::A | Array::Tau))
+                    .then_some(Arg { array, len })
+            })
+            .collect()
+    }
+
+    /// The function, expanded: its graph and its spec over `scalar_trait`.
+    pub fn function(&self, model: &Model, scalar_trait: &syn::Path) -> Function {
+        let Expanded { graph, output, doc } = (self.expand)(model);
+        let mut spec = FunctionSpec::new(self.name, scalar_trait.clone(), self.args(model), output);
+        spec.doc = doc;
+        Function { graph, spec }
+    }
+}
+
+/// The loop-closure functions are asked for and the model has closures.
+fn wants_constraints(model: &Model) -> bool {
+    model.outputs.constraints
+        && model
+            .statics
+            .as_ref()
+            .is_some_and(|s| s.closure_count() > 0)
+}
+
+/// Whether the model declares loads.
+fn has_loads(model: &Model) -> bool {
+    model.load_inputs > 0
+}
+
+/// τ of a Newton–Euler sweep over base inertial parameters, chosen for τ.
+fn joint_forces(
+    g: &Graph,
+    model: &Model,
+    transforms: &[crate::expand::geometry::JointTransform],
+    inertias: &[BodyInertia],
+    inputs: &SweepInputs,
+) -> Vec<Node> {
+    let sweep = rnea::sweep(g, model, transforms, inertias, inputs);
+    base_parameters::regroup_sweep(g, model, transforms, inputs, inertias, &sweep)
+        .0
+        .tau
+}
+
+fn inverse_dynamics(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let (v, a) = (
+        inputs(&g, Array::V, model.nv),
+        inputs(&g, Array::A, model.nv),
+    );
+    let sweep_inputs = SweepInputs {
+        velocity: &v,
+        acceleration: &a,
+        gravity: true,
+        loads: has_loads(model),
+    };
+    let tau = joint_forces(&g, model, &t, &i, &sweep_inputs);
+    Expanded {
+        graph: g,
+        output: Output::Vector(tau),
+        doc: "Inverse dynamics: τ = M(q) q̈ + C(q, q̇) q̇ + g(q) + b q̇ − Q, the joint forces that \
+              produce the accelerations `a` at state (`q`, `v`) (recursive Newton–Euler, \
+              shifted-inertia form)."
+            .to_owned(),
+    }
+}
+
+fn gravity(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let zero = vec![g.zero(); model.nv];
+    let sweep_inputs = SweepInputs {
+        velocity: &zero,
+        acceleration: &zero,
+        gravity: true,
+        loads: false,
+    };
+    let tau = joint_forces(&g, model, &t, &i, &sweep_inputs);
+    Expanded {
+        graph: g,
+        output: Output::Vector(tau),
+        doc: "Gravity torques g(q): the joint forces that hold the mechanism still at `q`."
+            .to_owned(),
+    }
+}
+
+fn bias(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let v = inputs(&g, Array::V, model.nv);
+    let zero = vec![g.zero(); model.nv];
+    let sweep_inputs = SweepInputs {
+        velocity: &v,
+        acceleration: &zero,
+        gravity: true,
+        loads: false,
+    };
+    let tau = joint_forces(&g, model, &t, &i, &sweep_inputs);
+    Expanded {
+        graph: g,
+        output: Output::Vector(tau),
+        doc: "Bias forces C(q, q̇) q̇ + g(q) + b q̇: inverse dynamics at zero acceleration."
+            .to_owned(),
+    }
+}
+
+/// M(q) over the base inertial parameters that make it cheapest.
+fn regrouped_mass_matrix(
+    g: &Graph,
+    model: &Model,
+    transforms: &[crate::expand::geometry::JointTransform],
+    inertias: &[BodyInertia],
+) -> Vec<Vec<Node>> {
+    let build = |i: &[BodyInertia]| crba::mass_matrix(g, model, transforms, i);
+    let regrouped = base_parameters::regroup(g, model, transforms, inertias, |i| build(i).concat());
+    build(&regrouped)
+}
+
+fn mass_matrix(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let m = regrouped_mass_matrix(&g, model, &t, &i);
+    Expanded {
+        graph: g,
+        output: Output::Matrix(m),
+        doc: "Mass matrix M(q) (symmetric, armature on the diagonal), by composite rigid bodies."
+            .to_owned(),
+    }
+}
+
+fn coriolis_matrix(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let v = inputs(&g, Array::V, model.nv);
+    // C is the Christoffel-consistent factorization, a function of M(q): base parameters
+    // serve.
+    let build = |i: &[BodyInertia]| coriolis::coriolis_matrix(&g, model, &t, i, &v);
+    let c = build(&base_parameters::regroup(&g, model, &t, &i, |i| {
+        build(i).concat()
+    }));
+    Expanded {
+        graph: g,
+        output: Output::Matrix(c),
+        doc: "Coriolis matrix C(q, q̇), the Christoffel-consistent one: C q̇ is the Coriolis and \
+              centrifugal force and Ṁ − 2C is skew-symmetric."
+            .to_owned(),
+    }
+}
+
+/// The two forward-dynamics algorithms the generator knows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum ForwardMethod {
+    /// The articulated-body algorithm: linear in the number of joints.
+    ArticulatedBody,
+    /// M(q) by composite rigid bodies, then its tree-sparse LDLᵀ factorization: fewer
+    /// operations for short chains and trees.
+    MassMatrixLdlt,
+}
+
+/// q̈ = FD(q, q̇, τ) by one method, in a fresh graph, over base inertial parameters.
+pub(crate) fn forward_dynamics_by(model: &Model, method: ForwardMethod) -> (Graph, Vec<Node>) {
+    let (g, t, i) = fresh_graph(model);
+    let nv = model.nv;
+    let loads = has_loads(model);
+    let v = inputs(&g, Array::V, nv);
+    let tau = inputs(&g, Array::Tau, nv);
+    let qdd = match method {
+        ForwardMethod::ArticulatedBody => {
+            let external = rnea::load_wrenches(&g, model, loads);
+            let build =
+                |i: &[BodyInertia]| aba::forward_dynamics(&g, model, &t, i, &v, &tau, &external);
+            build(&base_parameters::regroup(&g, model, &t, &i, build))
+        }
+        ForwardMethod::MassMatrixLdlt => {
+            let zero = vec![g.zero(); nv];
+            let sweep_inputs = SweepInputs {
+                velocity: &v,
+                acceleration: &zero,
+                gravity: true,
+                loads,
+            };
+            let bias = joint_forces(&g, model, &t, &i, &sweep_inputs);
+            let rhs: Vec<Node> = tau.iter().zip(&bias).map(|(&t, &b)| g.sub(t, b)).collect();
+            let m = regrouped_mass_matrix(&g, model, &t, &i);
+            ldlt::solve(&g, model, m, rhs)
+        }
+    };
+    (g, qdd)
+}
+
+/// Forward dynamics by whichever method costs fewer operations for this model (a division
+/// weighted as ten operations), with the method named in the docs.
+fn forward_dynamics(model: &Model) -> Expanded {
+    let cost = |(g, qdd): &(Graph, Vec<Node>)| {
+        let c = g.op_count(qdd);
+        c.mul + c.add + 10 * c.div + 10 * c.sqrt
+    };
+    let aba = forward_dynamics_by(model, ForwardMethod::ArticulatedBody);
+    let ldlt = forward_dynamics_by(model, ForwardMethod::MassMatrixLdlt);
+    let ((graph, qdd), method) = if cost(&aba) <= cost(&ldlt) {
+        (
+            aba,
+            "the articulated-body algorithm (fewer operations than LDLᵀ of M here)",
+        )
+    } else {
+        (
+            ldlt,
+            "a tree-sparse LDLᵀ factorization of M (fewer operations than the articulated-body \
+             algorithm here)",
+        )
+    };
+    Expanded {
+        graph,
+        output: Output::Vector(qdd),
+        doc: format!(
+            "Forward dynamics: q̈ = M(q)⁻¹ (τ + Q − C(q, q̇) q̇ − g(q) − b q̇), by {method}. A \
+             singular M gives non-finite values, never a panic."
+        ),
+    }
+}
+
+/// Forward dynamics by the method its name asks for, whatever it costs.
+fn forward_dynamics_named(model: &Model, method: ForwardMethod) -> Expanded {
+    let phrase = match method {
+        ForwardMethod::ArticulatedBody => "the articulated-body algorithm",
+        ForwardMethod::MassMatrixLdlt => "a tree-sparse LDLᵀ factorization of M",
+    };
+    let (graph, qdd) = forward_dynamics_by(model, method);
+    Expanded {
+        graph,
+        output: Output::Vector(qdd),
+        doc: format!(
+            "Forward dynamics q̈ = M(q)⁻¹ (τ + Q − C(q, q̇) q̇ − g(q) − b q̇) by {phrase}, whatever \
+             it costs. A singular M gives non-finite values, never a panic."
+        ),
+    }
+}
+
+fn kinetic_energy(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let v = inputs(&g, Array::V, model.nv);
+    let kinetic = energy::kinetic(&g, model, &t, &i, &v);
+    Expanded {
+        graph: g,
+        output: Output::Scalar(kinetic),
+        doc: "Kinetic energy T = ½ q̇ᵀ M(q) q̇.".to_owned(),
+    }
+}
+
+fn potential_energy(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let potential = energy::potential(&g, model, &t, &i);
+    Expanded {
+        graph: g,
+        output: Output::Scalar(potential),
+        doc: "Potential energy of gravity V(q) = −Σ m_i g·c_i (zero at the world origin)."
+            .to_owned(),
+    }
+}
+
+fn joint_reactions(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let (v, a) = (
+        inputs(&g, Array::V, model.nv),
+        inputs(&g, Array::A, model.nv),
+    );
+    let sweep_inputs = SweepInputs {
+        velocity: &v,
+        acceleration: &a,
+        gravity: true,
+        loads: has_loads(model),
+    };
+    // The joint wrenches are the declared bodies' (base parameters keep τ only).
+    let sweep = rnea::sweep(&g, model, &t, &i, &sweep_inputs);
+    let rows = sweep
+        .wrenches()
+        .iter()
+        .map(|(f, m)| vec![f.get(0), f.get(1), f.get(2), m.get(0), m.get(1), m.get(2)])
+        .collect();
+    Expanded {
+        graph: g,
+        output: Output::Matrix(rows),
+        doc: "Joint reactions: for each body, the wrench [F; M_P] its joint transmits to it from \
+              the parent (actuator component included), in the body frame about the joint \
+              point P."
+            .to_owned(),
+    }
+}
+
+/// The model's force-analysis data; [`CATALOG`] asks for the functions that read it only
+/// when it is there.
+fn statics_of(model: &Model) -> &crate::model::statics::Statics {
+    match &model.statics {
+        Some(statics) => statics,
+        None => unreachable!("the catalog expands the force analysis only when it is declared"),
+    }
+}
+
+fn force_analysis(model: &Model) -> Expanded {
+    let statics = statics_of(model);
+    let (g, t, i) = fresh_graph(model);
+    let (v, a) = (
+        inputs(&g, Array::V, model.nv),
+        inputs(&g, Array::A, model.nv),
+    );
+    let sweep = SweepInputs {
+        velocity: &v,
+        acceleration: &a,
+        gravity: true,
+        loads: has_loads(model),
+    };
+    let (matrix, rhs) = statics::balance_equations(&g, model, statics, &t, &i, &sweep);
+    let (x, pivots) = qr::solve(&g, matrix, rhs);
+    let names: Vec<&str> = statics.unknowns.iter().map(|u| u.name.as_str()).collect();
+    Expanded {
+        graph: g,
+        output: Output::Tuple(vec![Output::Vector(x), Output::Vector(pivots)]),
+        doc: format!(
+            "Force analysis: every reaction component and driving effort x = ({}) at the \
+             motion (`q`, `v`, `a`), from each body's balance equations A(q) x = b(q, q̇, q̈) \
+             solved by Givens QR; returns (x, diagonal of R). Components are along the axes of \
+             the connection's first body; each acts on the second body and, opposite, on the \
+             first. A singular A (a toggle or dead-centre position) gives a zero pivot or \
+             non-finite values: check with `ForceAnalysis::checked`.",
+            names.join(", ")
+        ),
+    }
+}
+
+fn constraint_residual(model: &Model) -> Expanded {
+    let (g, t, _) = fresh_graph(model);
+    let phi = statics::closure_residual(&g, model, statics_of(model), &t);
+    Expanded {
+        graph: g,
+        output: Output::Vector(phi),
+        doc: "Loop closure φ(q): zero when every declared constraint is satisfied (each \
+              component along a reaction direction, in the first body's frame)."
+            .to_owned(),
+    }
+}
+
+fn constraint_jacobian(model: &Model) -> Expanded {
+    let (g, t, _) = fresh_graph(model);
+    let phi = statics::closure_residual(&g, model, statics_of(model), &t);
+    let jacobian = statics::closure_jacobian(&g, model, &phi);
+    Expanded {
+        graph: g,
+        output: Output::Matrix(jacobian),
+        doc: "Constraint Jacobian Φ_q = ∂φ/∂q (one row per closure equation).".to_owned(),
+    }
+}
+
+fn constraint_bias(model: &Model) -> Expanded {
+    let (g, t, _) = fresh_graph(model);
+    let phi = statics::closure_residual(&g, model, statics_of(model), &t);
+    let (_, gamma) = statics::closure_rates(&g, &phi);
+    Expanded {
+        graph: g,
+        output: Output::Vector(gamma),
+        doc: "Constraint acceleration term γ(q, q̇) = −(∂(Φ_q q̇)/∂q) q̇: the accelerations \
+              that keep the loops closed satisfy Φ_q q̈ = γ."
+            .to_owned(),
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use crate::sym::OpCount;
+    use proc_macro2::TokenStream;
+    use quote::{format_ident, quote};
+
+    fn compile(tokens: TokenStream) -> Vec<Function> {
+        let mechanism: crate::syntax::Mechanism = syn::parse2(tokens).expect("parses");
+        let model = crate::model::lower(&mechanism).expect("valid");
+        let scalar: syn::Path = syn::parse_quote!(Scalar);
+        CATALOG
+            .iter()
+            .filter(|entry| (entry.wanted)(&model))
+            .map(|entry| entry.function(&model, &scalar))
+            .collect()
+    }
+
+    fn ops(functions: &[Function], name: &str) -> OpCount {
+        let f = functions
+            .iter()
+            .find(|f| f.spec.name == name)
+            .expect("generated");
+        f.graph.op_count(&f.spec.output.nodes())
+    }
+
+    /// A chain of `n` links. Spatial: alternating joint axes (z, y, x, ...), offset mass
+    /// centres and full inertias, no structure to exploit beyond what any arm has. Planar:
+    /// every axis z, links along x (the benchmark's planar chains).
+    pub(crate) fn chain(n: usize, spatial: bool, outputs: TokenStream) -> TokenStream {
+        let bodies = (0..n).map(|i| {
+            let name = format_ident!("link{i}");
+            if spatial {
+                quote! { body #name { mass: 1.5, com: [0.2, 0.01, 0.02], inertia: [[0.02, 0.001, 0.002], [0.001, 0.03, 0.003], [0.002, 0.003, 0.025]] } }
+            } else {
+                quote! { body #name { mass: 1.0, com: [0.25, 0.0, 0.0], shape: rod(length: 0.5, axis: x) } }
+            }
+        });
+        let joints = (0..n).map(|i| {
+            let (name, child) = (format_ident!("joint{i}"), format_ident!("link{i}"));
+            let parent = if i == 0 {
+                format_ident!("ground")
+            } else {
+                format_ident!("link{}", i - 1)
+            };
+            let axis = if spatial {
+                [quote!(z), quote!(y), quote!(x)][i % 3].clone()
+            } else {
+                quote!(z)
+            };
+            let at = match (i, spatial) {
+                (0, _) => quote!([0.0, 0.0, 0.0]),
+                (_, true) => quote!([0.4, 0.0, 0.05]),
+                (_, false) => quote!([0.5, 0.0, 0.0]),
+            };
+            quote! { joint #name: revolute(#parent -> #child) { axis: #axis, at: #at } }
+        });
+        quote! {
+            pub struct Chain;
+            gravity: [0.0, -9.81, 0.0];
+            outputs: #outputs;
+            #(#bodies)*
+            #(#joints)*
+        }
+    }
+
+    fn total(functions: &[Function], name: &str) -> usize {
+        let c = ops(functions, name);
+        c.mul + c.add + c.div + c.trig
+    }
+
+    /// The tokens of the PUMA 560's `mechanism!` invocation.
+    pub(crate) fn puma_tokens() -> TokenStream {
+        let source = include_str!("../../models/src/puma560.rs");
+        let file = syn::parse_file(source).expect("parses");
+        file.items
+            .into_iter()
+            .find_map(|item| match item {
+                syn::Item::Macro(m) => Some(m.mac.tokens),
+                _ => None,
+            })
+            .expect("a mechanism! invocation")
+    }
+
+    #[test]
+    fn puma_inverse_dynamics_meets_the_customized_newton_euler_count() {
+        let count = ops(&compile(puma_tokens()), "inverse_dynamics");
+        // Murray and Neuman's ARM: 224 multiplications, 174 additions (199 and 160 here, with
+        // the inertial parameters regrouped into base parameters).
+        assert!(count.mul <= 224, "{count}");
+        assert!(count.add <= 174, "{count}");
+        assert_eq!(count.div, 0, "{count}");
+    }
+
+    #[test]
+    fn inverse_and_forward_dynamics_grow_linearly() {
+        let outputs = quote!([inverse_dynamics, forward_dynamics, mass_matrix]);
+        for spatial in [false, true] {
+            let at = |n: usize| compile(chain(n, spatial, outputs.clone()));
+            let (c10, c13, c20, c23, c30) = (at(10), at(13), at(20), at(23), at(30));
+            // Linear: links added cost the same wherever they are added (compared over three
+            // links, one period of the spatial chain's z, y, x axes).
+            let near = total(&c13, "inverse_dynamics") - total(&c10, "inverse_dynamics");
+            let far = total(&c23, "inverse_dynamics") - total(&c20, "inverse_dynamics");
+            assert_eq!(
+                near, far,
+                "inverse dynamics (spatial: {spatial}): links 11-13 cost {near}, links 21-23 {far}"
+            );
+            // Forward dynamics: the articulated-body graph is linear; the generated function
+            // (the cheaper method) never costs more than it.
+            let aba = |n: usize| {
+                let mechanism: crate::syntax::Mechanism =
+                    syn::parse2(chain(n, spatial, outputs.clone())).expect("parses");
+                let model = crate::model::lower(&mechanism).expect("valid");
+                let (g, qdd) = forward_dynamics_by(&model, ForwardMethod::ArticulatedBody);
+                let c = g.op_count(&qdd);
+                c.mul + c.add + c.div + c.trig
+            };
+            let (near, far) = (aba(13) - aba(10), aba(23) - aba(20));
+            assert_eq!(
+                near, far,
+                "articulated body (spatial: {spatial}): links 11-13 cost {near}, links 21-23 {far}"
+            );
+            assert!(total(&c30, "forward_dynamics") <= aba(30));
+            let ratio =
+                total(&c30, "inverse_dynamics") as f64 / total(&c10, "inverse_dynamics") as f64;
+            // The first links are cheaper (fixed base), so the ratio sits a little above 3:
+            // 3.32 for the spatial chain, below 3.3 for the planar one.
+            let bound = if spatial { 3.33 } else { 3.3 };
+            assert!(
+                ratio <= bound,
+                "ops(30)/ops(10) = {ratio} (spatial: {spatial})"
+            );
+            // The mass matrix has n² entries: quadratic, not worse.
+            let m_ratio = total(&c30, "mass_matrix") as f64 / total(&c10, "mass_matrix") as f64;
+            assert!(m_ratio <= 9.9, "mass matrix ops(30)/ops(10) = {m_ratio}");
+        }
+    }
+
+    #[test]
+    fn only_requested_functions_are_generated() {
+        let functions = compile(chain(3, true, quote!([gravity])));
+        let names: Vec<String> = functions.iter().map(|f| f.spec.name.to_string()).collect();
+        assert_eq!(names, ["gravity"]);
+        // Gravity reads only q: no velocity or acceleration input survives.
+        let live = functions[0].graph.live(&functions[0].spec.output.nodes());
+        for node in live.nodes() {
+            if let crate::sym::Op::Input(input) = functions[0].graph.op(node) {
+                assert_eq!(input.array, Array::Q, "{input}");
+            }
+        }
+    }
+
+    #[test]
+    fn coordinate_axes_and_zero_offsets_cost_nothing() {
+        // A planar pendulum about z with its mass centre on the link's x axis: the
+        // inverse dynamics is I_O q̈ + m g l cos q (+ nothing else).
+        let functions = compile(quote! {
+            struct P;
+            gravity: [0.0, -9.81, 0.0];
+            outputs: [inverse_dynamics];
+            body rod { mass: 2.0, com: [0.3, 0.0, 0.0], inertia: diag([0.0, 0.06, 0.06]) }
+            joint pin: revolute(ground -> rod) { axis: z }
+        });
+        let count = ops(&functions, "inverse_dynamics");
+        assert!(count.mul <= 3 && count.add <= 1, "{count}");
+    }
+
+    #[test]
+    fn articulated_body_and_ldlt_agree() {
+        let free_tree = quote! {
+            struct FreeTree;
+            gravity: [0.0, 0.0, -9.81];
+            outputs: [forward_dynamics];
+            body base { mass: 3.0, com: [0.01, 0.02, -0.03], inertia: [[0.1, 0.01, 0.0], [0.01, 0.12, 0.02], [0.0, 0.02, 0.09]] }
+            body left { mass: 1.0, com: [0.1, 0.0, 0.0], shape: rod(length: 0.2, axis: x) }
+            body right { mass: 0.7, com: [0.0, 0.05, 0.01], shape: box(size: [0.05, 0.1, 0.02]) }
+            body slider { mass: 0.4, shape: sphere(radius: 0.03) }
+            joint float: free(ground -> base);
+            joint hip_left: revolute(base -> left) { axis: [0.3, 0.2, 1.0], at: [0.1, 0.1, 0.0], rotation: rpy(0.1, 0.2, 0.3), armature: 0.01, damping: 0.2 }
+            joint hip_right: revolute(base -> right) { axis: y, at: [0.1, -0.1, 0.0] }
+            joint slide: prismatic(left -> slider) { axis: x, at: [0.2, 0.0, 0.0], damping: 0.5 }
+            load push: wrench on slider at [0.01, 0.0, 0.02];
+            load twist: couple on right;
+        };
+        for tokens in [free_tree, chain(6, true, quote!([forward_dynamics]))] {
+            let mechanism: crate::syntax::Mechanism = syn::parse2(tokens).expect("parses");
+            let model = crate::model::lower(&mechanism).expect("valid");
+            let by = |method| forward_dynamics_by(&model, method);
+            let (aba, ldlt) = (
+                by(ForwardMethod::ArticulatedBody),
+                by(ForwardMethod::MassMatrixLdlt),
+            );
+            for state in 0..5 {
+                let input = |r: crate::sym::InputRef| {
+                    let k = r.index as f64;
+                    let s = state as f64;
+                    match r.array {
+                        // A unit quaternion for the free joint (q[3..7]); angles elsewhere.
+                        Array::Q if model.nq == 7 + 3 && (3..7).contains(&r.index) => {
+                            [0.1, -0.2, 0.3 + 0.1 * s, 0.9][r.index as usize - 3]
+                                / (0.95_f64 + 0.06 * s + 0.01 * s * s).sqrt()
+                        }
+                        Array::Q => (0.7 * k + 0.3 * s).sin(),
+                        Array::V => (1.3 * k - 0.5 * s).cos(),
+                        Array::Tau => 2.0 * (0.4 * k + s).sin(),
+                        Array::Loads => 0.5 * (k - s).cos(),
+                        _ => 0.0,
+                    }
+                };
+                let a = aba.0.eval(input, &aba.1);
+                let b = ldlt.0.eval(input, &ldlt.1);
+                let scale = 1.0 + b.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+                for (x, y) in a.iter().zip(&b) {
+                    assert!(
+                        (x - y).abs() <= 1e-10 * scale,
+                        "{} state {state}: ABA {a:?} vs LDLᵀ {b:?}",
+                        model.name
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn arguments_come_in_the_documented_order() {
+        let functions = compile(quote! {
+            struct P;
+            parameters: [tip = 1.0];
+            body b { mass: tip, com: [0.1, 0.0, 0.0], shape: point }
+            joint j: revolute(ground -> b) { axis: z }
+            load push: force on b;
+        });
+        let order = |name: &str| -> Vec<&str> {
+            let f = functions
+                .iter()
+                .find(|f| f.spec.name == name)
+                .expect("generated");
+            f.spec.args.iter().map(|a| a.array.name()).collect()
+        };
+        assert_eq!(order("inverse_dynamics"), ["q", "v", "a", "p", "loads"]);
+        assert_eq!(order("forward_dynamics"), ["q", "v", "tau", "p", "loads"]);
+        assert_eq!(order("mass_matrix"), ["q", "p"]);
+    }
+}

@@ -1,0 +1,52 @@
+//! The declaration with its numbers resolved: what resolution ([`super::resolve`]) gives
+//! the rules ([`super::rules`]) and the tree builder ([`super::tree`]). Every value keeps the
+//! span of the tokens it came from.
+
+use super::value::{Mat3, Value, Vec3};
+use super::{Outputs, Parameter};
+use crate::syntax::{self, SpanRange};
+
+/// A body with resolved numbers.
+pub(crate) struct ResolvedBody {
+    pub docs: Vec<String>,
+    pub name: syntax::Name,
+    pub mass: Value,
+    pub mass_span: SpanRange,
+    pub com: Vec3,
+    pub inertia: Mat3,
+    pub inertia_span: SpanRange,
+}
+
+/// A joint with resolved numbers.
+pub(crate) struct ResolvedJoint {
+    pub docs: Vec<String>,
+    pub name: syntax::Name,
+    pub kind: syntax::JointKind,
+    pub parent: syntax::Name,
+    pub child: syntax::Name,
+    /// The axis as given, and its span (revolute and prismatic only).
+    pub axis: Option<([f64; 3], SpanRange)>,
+    pub translation: Vec3,
+    pub rotation: [[f64; 3]; 3],
+    pub rotation_span: SpanRange,
+    pub armature: (Value, SpanRange),
+    pub damping: (Value, SpanRange),
+}
+
+/// The whole declaration, resolved.
+pub(crate) struct Resolved {
+    pub parameters: Vec<Parameter>,
+    pub parameter_used: Vec<bool>,
+    pub bodies: Vec<ResolvedBody>,
+    pub joints: Vec<ResolvedJoint>,
+    pub outputs: Outputs,
+    pub skip_triangle_inequality: bool,
+    pub gravity: [f64; 3],
+}
+
+impl Resolved {
+    /// Nominal values of the parameters.
+    pub fn nominal_parameters(&self) -> Vec<f64> {
+        self.parameters.iter().map(|p| p.nominal).collect()
+    }
+}
