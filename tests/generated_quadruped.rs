@@ -2,7 +2,7 @@
 //! every generated output against the runtime reference, with the foot forces as external
 //! wrenches on the shins.
 
-use dynamics_runtime::reference::Wrench;
+use dynamics_runtime::Wrench;
 use dynamics_runtime::{Mechanism, Reference};
 use dynamics_tests::random::SplitMix;
 use dynamics_tests::{max_abs_diff, tolerance_scale};

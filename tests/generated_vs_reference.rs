@@ -8,7 +8,7 @@
 #[macro_use]
 mod generated_support;
 
-use dynamics_runtime::reference::Wrench;
+use dynamics_runtime::Wrench;
 use dynamics_runtime::{Mechanism, Model, Reference};
 use dynamics_tests::random::SplitMix;
 use dynamics_tests::{max_abs_diff, tolerance_scale};

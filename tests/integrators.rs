@@ -2,8 +2,8 @@
 //! a stiff joint. Each test asserts that the robust method holds and shows the one that
 //! fails, with the failure as a number (growth, NaN or an error), never a crash.
 
-use dynamics_runtime::dynamics::Lagrangian;
 use dynamics_runtime::integrators::{self, Inputs, State, StepError};
+use dynamics_runtime::Lagrangian;
 use dynamics_runtime::{mechanism, DoubleDouble, Energy};
 use dynamics_tests::random::SplitMix;
 use models::anchors::DoublePendulum;

@@ -342,7 +342,7 @@ pub fn dynamics_traits(model: &Model, rt: &TokenStream) -> TokenStream {
             #[inline]
             fn integrate(q: &[T; #nq], v: &[T; #nv], dt: T) -> [T; #nq] {
                 let mut out = *q;
-                #rt::dynamics::integrate_configuration(q, v, dt, &[#(#free_joints),*], &mut out);
+                #rt::integrate_configuration(q, v, dt, &[#(#free_joints),*], &mut out);
                 out
             }
         }
@@ -363,7 +363,7 @@ fn lagrangian_trait(model: &Model, rt: &TokenStream) -> TokenStream {
     let (nq, nv, np) = (model.nq, model.nv, model.parameters.len());
     let p_arg = (np > 0).then(|| quote!(parameters));
     quote! {
-        impl<T: #rt::Scalar> #rt::dynamics::Lagrangian<T> for #name {
+        impl<T: #rt::Scalar> #rt::Lagrangian<T> for #name {
             #[inline]
             fn mass_matrix(q: &[T; #nq], parameters: &[T; #np]) -> [[T; #nv]; #nv] {
                 let _ = parameters;

@@ -14,7 +14,7 @@
 //! ns per iteration; divide by six for one pair.
 
 use criterion::{criterion_main, Criterion};
-use dynamics_runtime::fast_trig;
+use dynamics_runtime::__private::fast_trig;
 use std::f64::consts::PI;
 use std::hint::black_box;
 

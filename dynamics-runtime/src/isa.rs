@@ -79,7 +79,7 @@ fn cpu_has_avx2_fma() -> bool {
 /// Runs a whole generated function: `wide()` when [`wide`] says so, `narrow()` otherwise,
 /// inlined into the caller.
 #[inline(always)]
-pub fn run<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
+pub(crate) fn run<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
     #[cfg(target_arch = "x86_64")]
     if self::wide() {
         // SAFETY: `avx2_fma` is compiled for AVX2 and FMA, and `self::wide()` returns true
@@ -94,7 +94,7 @@ pub fn run<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
 /// Runs one piece of a split function like [`run`], but keeps the baseline copy out of
 /// line too, so that the pieces stay separate functions either way.
 #[inline(always)]
-pub fn run_piece<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
+pub(crate) fn run_piece<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
     run(wide, || out_of_line(narrow))
 }
 

@@ -64,6 +64,7 @@ pub trait Scalar:
     fn mul_add(self, a: Self, b: Self) -> Self {
         self * a + b
     }
+    #[doc(hidden)]
     /// `self · a + b` in the `WIDE` copy of a generated kernel ([`crate::isa`]): the
     /// baseline copy (`WIDE = false`) calls [`Scalar::mul_add`]; the wide copy of `f32` and
     /// `f64`, compiled for FMA, fuses (one instruction, one rounding). The default is
@@ -73,6 +74,7 @@ pub trait Scalar:
     fn mul_add_for<const WIDE: bool>(self, a: Self, b: Self) -> Self {
         self.mul_add(a, b)
     }
+    #[doc(hidden)]
     /// [`Scalar::sin_cos_array`] in the `WIDE` copy of a generated kernel: for `f64` the
     /// wide copy takes four angles per AVX register with fused Estrin steps
     /// ([`crate::fast_trig::avx2::sin_cos_array`]). The default is `sin_cos_array` in both.
@@ -80,7 +82,9 @@ pub trait Scalar:
     fn sin_cos_array_for<const WIDE: bool, const N: usize>(x: [Self; N]) -> ([Self; N], [Self; N]) {
         Self::sin_cos_array(x)
     }
-    /// Runs a whole generated function, `wide` (its `WIDE = true` kernel) or `narrow`. `f32`
+    #[doc(hidden)]
+    /// For generated code, not for users (hidden from the docs): runs a whole generated
+    /// function, `wide` (its `WIDE = true` kernel) or `narrow`. `f32`
     /// and `f64` choose at run time with [`crate::isa::run`]; the default runs `narrow`, so
     /// other types never instantiate the wide kernel.
     #[inline(always)]
@@ -88,6 +92,7 @@ pub trait Scalar:
         let _ = wide;
         narrow()
     }
+    #[doc(hidden)]
     /// Runs one piece of a split generated function like [`Scalar::run_kernel`], each copy
     /// out of line ([`crate::isa::run_piece`]), so that the pieces stay separate functions.
     #[inline(always)]

@@ -26,7 +26,7 @@
 //! quadruped), and the states' fingerprint is printed for the comparison script.
 
 use criterion::{criterion_group, criterion_main, Criterion, SamplingMode};
-use dynamics_runtime::reference::Wrench;
+use dynamics_runtime::Wrench;
 use dynamics_runtime::{JointKind, Mechanism, Model, Reference};
 use models::anchors::{DoublePendulum, Panda, Pendulum, Planar3, Ur5};
 use models::chains::{Chain1, Chain10, Chain15, Chain2, Chain20, Chain25, Chain3, Chain30, Chain5};

@@ -4,7 +4,7 @@
 //!
 //! Run with `cargo run --release -p models --example demo`.
 
-use dynamics_runtime::reference::Wrench;
+use dynamics_runtime::Wrench;
 use dynamics_runtime::{DoubleDouble as Dd, Mechanism, Model, Reference};
 use models::anchors::{DoublePendulum, Panda, Pendulum, Planar3, Ur5};
 use models::puma560::Puma560;

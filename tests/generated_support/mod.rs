@@ -9,7 +9,7 @@
 // Each test binary uses part of this module.
 #![allow(dead_code, unused_macros)]
 
-use dynamics_runtime::reference::Wrench;
+use dynamics_runtime::Wrench;
 use dynamics_runtime::{Model, Reference};
 use dynamics_tests::random::{self, SplitMix};
 use dynamics_tests::{max_abs_diff, tolerance_scale};
