@@ -122,6 +122,51 @@ fn documentation(model: &Model) -> Vec<String> {
         };
         lines.push(format!(" | `{}` | {moves} | {kind} | {q} | {v} |", j.name));
     }
+    if !model.loads.is_empty() {
+        lines.push(String::new());
+        lines.push(" # Loads".into());
+        lines.push(String::new());
+        lines.push(
+            " Each load's components are consecutive entries of the `loads` argument, in the \
+             frame of the body it was declared on; a force acts at the load's point (in that \
+             frame), a couple is free."
+                .into(),
+        );
+        lines.push(String::new());
+        lines.push(" | load | acts on | at | `loads` entries |".into());
+        lines.push(" | --- | --- | --- | --- |".into());
+        for load in &model.loads {
+            let (o, n) = (load.input_offset, load.kind.input_count());
+            let entries = match load.kind {
+                crate::model::LoadKind::Force => format!("[{o}..{}] = F", o + n),
+                crate::model::LoadKind::Couple => format!("[{o}..{}] = M", o + n),
+                crate::model::LoadKind::Wrench => {
+                    format!("[{o}..{}] = F, [{}..{}] = M", o + 3, o + 3, o + 6)
+                }
+            };
+            let at: Vec<String> = load
+                .declared_point
+                .iter()
+                .map(|v| {
+                    if v.terms.is_empty() {
+                        format!("{}", v.constant)
+                    } else {
+                        "(parameter)".to_owned()
+                    }
+                })
+                .collect();
+            lines.push(format!(
+                " | `{}` | `{}` | [{}] | {entries} |",
+                load.name,
+                load.declared_body,
+                at.join(", ")
+            ));
+        }
+        for load in model.loads.iter().filter(|l| !l.docs.is_empty()) {
+            lines.push(String::new());
+            lines.push(format!(" `{}`:{}", load.name, load.docs.join(" ")));
+        }
+    }
     let documented: Vec<(&str, &[String])> = model
         .bodies
         .iter()

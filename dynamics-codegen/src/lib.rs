@@ -235,6 +235,76 @@ mod tests {
         }
     }
 
+    /// A load's doc comment, body, point and input layout reach the type's docs.
+    #[test]
+    fn loads_are_documented_with_their_inputs_and_frame() {
+        let mechanism: Mechanism = syn::parse2(quote! {
+            pub struct Arm;
+            body upper { mass: 1.0, com: [0.2, 0.0, 0.0], shape: point }
+            body tool { mass: 0.2, shape: point }
+            joint shoulder: revolute(ground -> upper) { axis: z }
+            joint weld: fixed(upper -> tool) { at: [0.4, 0.0, 0.0] }
+            /// A push at the tip.
+            load push: force on tool at [0.1, 0.0, 0.0];
+            load grip: wrench on upper;
+        })
+        .expect("parses");
+        let compiled = compile(mechanism, Path::new(".")).expect("valid");
+        let file: syn::File = syn::parse2(to_tokens(&compiled)).expect("valid Rust");
+        let text = prettyplease::unparse(&file);
+        for expected in [
+            "/// # Loads",
+            "| `push` | `tool` | [0.1, 0, 0] | [0..3] = F |",
+            "| `grip` | `upper` | [0, 0, 0] | [3..6] = F, [6..9] = M |",
+            "`push`: A push at the tip.",
+        ] {
+            assert!(text.contains(expected), "missing {expected:?} in\n{text}");
+        }
+    }
+
+    /// The function names are output names; the short forms stand for the same outputs.
+    #[test]
+    fn outputs_are_named_as_the_functions_they_generate() {
+        let names = |outputs: TokenStream| -> Vec<String> {
+            let mechanism: Mechanism = syn::parse2(quote! {
+                pub struct P;
+                outputs: #outputs;
+                body b { mass: 1.0, com: [0.1, 0.0, 0.0], shape: point }
+                joint j: revolute(ground -> b) { axis: z }
+            })
+            .expect("parses");
+            let compiled = compile(mechanism, Path::new(".")).expect("valid");
+            compiled.functions().into_iter().map(|f| f.name).collect()
+        };
+        let full = names(quote!([coriolis_matrix, joint_reactions, kinetic_energy]));
+        assert_eq!(
+            full,
+            [
+                "coriolis_matrix",
+                "kinetic_energy",
+                "potential_energy",
+                "joint_reactions"
+            ]
+        );
+        assert_eq!(names(quote!([coriolis, reactions, energy])), full);
+        let unknown: Mechanism = syn::parse2(quote! {
+            pub struct P;
+            outputs: [coriolis_matrx];
+            body b { mass: 1.0, com: [0.1, 0.0, 0.0], shape: point }
+            joint j: revolute(ground -> b) { axis: z }
+        })
+        .expect("parses");
+        let message = compile(unknown, Path::new("."))
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(
+            message.contains("unknown output `coriolis_matrx`")
+                && message.contains("coriolis_matrix"),
+            "{message}"
+        );
+    }
+
     /// Statements in the body of every function (and nested piece) of the emitted code.
     fn body_lengths(items: &[syn::Item], out: &mut Vec<usize>) {
         for item in items {

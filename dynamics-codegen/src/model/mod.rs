@@ -58,20 +58,33 @@ pub struct Outputs {
 }
 
 impl Outputs {
-    /// The output names the language accepts, with their meaning.
-    pub const NAMES: [&'static str; 12] = [
+    /// The output names the language accepts: the names of the functions they generate
+    /// (`kinetic_energy` and `potential_energy` come together, as do the three constraint
+    /// functions).
+    pub const NAMES: [&'static str; 15] = [
         "inverse_dynamics",
-        "mass_matrix",
-        "coriolis",
         "gravity",
         "bias",
+        "mass_matrix",
+        "coriolis_matrix",
         "forward_dynamics",
         "forward_dynamics_aba",
         "forward_dynamics_ldlt",
-        "energy",
-        "reactions",
+        "kinetic_energy",
+        "potential_energy",
+        "joint_reactions",
         "force_analysis",
-        "constraints",
+        "constraint_residual",
+        "constraint_jacobian",
+        "constraint_bias",
+    ];
+
+    /// Short names accepted too, each with the name it stands for.
+    pub const ALIASES: [(&'static str, &'static str); 4] = [
+        ("coriolis", "coriolis_matrix"),
+        ("energy", "kinetic_energy"),
+        ("reactions", "joint_reactions"),
+        ("constraints", "constraint_residual"),
     ];
 
     /// Every output.
@@ -110,19 +123,25 @@ impl Outputs {
 
     /// Turns on the output with this name; `false` if the name is unknown.
     pub fn enable(&mut self, name: &str) -> bool {
+        let name = Self::ALIASES
+            .iter()
+            .find(|(alias, _)| *alias == name)
+            .map_or(name, |(_, full)| full);
         let flag = match name {
             "inverse_dynamics" => &mut self.inverse_dynamics,
             "mass_matrix" => &mut self.mass_matrix,
-            "coriolis" => &mut self.coriolis,
+            "coriolis_matrix" => &mut self.coriolis,
             "gravity" => &mut self.gravity,
             "bias" => &mut self.bias,
             "forward_dynamics" => &mut self.forward_dynamics,
             "forward_dynamics_aba" => &mut self.forward_dynamics_aba,
             "forward_dynamics_ldlt" => &mut self.forward_dynamics_ldlt,
-            "energy" => &mut self.energy,
-            "reactions" => &mut self.reactions,
+            "kinetic_energy" | "potential_energy" => &mut self.energy,
+            "joint_reactions" => &mut self.reactions,
             "force_analysis" => &mut self.force_analysis,
-            "constraints" => &mut self.constraints,
+            "constraint_residual" | "constraint_jacobian" | "constraint_bias" => {
+                &mut self.constraints
+            }
             _ => return false,
         };
         *flag = true;
@@ -242,10 +261,12 @@ pub use syntax::LoadKind;
 pub struct Load {
     /// Its name.
     pub name: String,
-    /// Its doc comments (not yet printed: the loads' section of the generated docs comes
-    /// with the language reference).
-    #[allow(dead_code)]
+    /// Its doc comments.
     pub docs: Vec<String>,
+    /// The body it was declared on (its inputs are in that body's frame).
+    pub declared_body: String,
+    /// The point of application as declared, in the declared body's frame.
+    pub declared_point: Vec3,
     /// Force, couple or wrench.
     pub kind: LoadKind,
     /// The body of the tree it acts on.

@@ -356,3 +356,35 @@ fn computed_numbers_have_six_significant_digits() {
     assert!(e.contains("armature -0.03;"), "{e}");
     assert!(e.contains("damping -0.25;"), "{e}");
 }
+
+#[test]
+fn an_unknown_output_suggests_the_closest_name() {
+    let e = errors(quote! {
+        struct Bad;
+        outputs: [mass_matirx, reaction, jacobian];
+        body a { mass: 1.0, com: [0.1, 0.0, 0.0], shape: point }
+        joint j: revolute(ground -> a) { axis: z }
+    })
+    .join("\n");
+    assert!(
+        e.contains("unknown output `mass_matirx`; did you mean `mass_matrix`?"),
+        "{e}"
+    );
+    assert!(
+        e.contains("unknown output `reaction`; did you mean `reactions`?"),
+        "{e}"
+    );
+    assert!(
+        e.contains("unknown output `jacobian`. The outputs are"),
+        "{e}"
+    );
+    assert_eq!(
+        super::rules::closest("bodi", &["body", "joint"]),
+        Some("body")
+    );
+    assert_eq!(
+        super::rules::closest("jiont", &["body", "joint"]),
+        Some("joint")
+    );
+    assert_eq!(super::rules::closest("wheel", &["body", "joint"]), None);
+}

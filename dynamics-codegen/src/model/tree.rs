@@ -153,6 +153,8 @@ pub(crate) fn build(
         loads.push(Load {
             name: load.name.text.clone(),
             docs: load.docs.clone(),
+            declared_body: load.body.text.clone(),
+            declared_point: point.clone(),
             kind: load.kind,
             body,
             rotation_in_body: at.rotation,
