@@ -540,10 +540,56 @@ fn implicit_step_reports_failure_instead_of_garbage() {
         integrators::implicit_midpoint(&start, &inputs, 1e-3, 1e-12, 10).err(),
         Some(StepError::NonFinite)
     );
+}
+
+/// A step size or tolerance that is zero, negative or not finite, or no iteration at all, is
+/// a bad argument and says so (it used to read as NonFinite, or as NotConverged with a last
+/// change of 0).
+#[test]
+fn implicit_steps_reject_bad_arguments() {
+    let (tau, p, loads) = ([0.0], [0.0; 0], [0.0; 0]);
+    let inputs = Inputs::<f64, StiffPendulum> {
+        tau: &tau,
+        parameters: &p,
+        loads: &loads,
+    };
     let start = State::<f64, StiffPendulum> { q: [0.5], v: [2.0] };
-    let zero_iterations = integrators::implicit_midpoint(&start, &inputs, 1e-3, 1e-12, 0);
-    assert!(matches!(
-        zero_iterations,
-        Err(StepError::NotConverged { iterations: 0, .. })
-    ));
+    let bad = [0.0, -1.0, f64::NAN, f64::INFINITY];
+    let mut cases: Vec<(f64, f64, usize)> = Vec::new();
+    for x in bad {
+        cases.push((1e-3, x, 10));
+        cases.push((x, 1e-12, 10));
+    }
+    cases.push((1e-3, 1e-12, 0));
+    for (dt, tolerance, iterations) in cases {
+        let implicit = integrators::implicit_midpoint(&start, &inputs, dt, tolerance, iterations);
+        let variational =
+            integrators::variational_midpoint(&start, &inputs, dt, tolerance, iterations);
+        for (scheme, result) in [("implicit", implicit), ("variational", variational)] {
+            assert!(
+                matches!(result, Err(StepError::InvalidArgument { .. })),
+                "{scheme} midpoint, dt {dt}, tolerance {tolerance}, {iterations} iterations: {:?}",
+                result.err()
+            );
+        }
+    }
+}
+
+/// A NaN velocity is reported by the variational step too, not passed over by its norms.
+#[test]
+fn variational_step_reports_a_nan_velocity() {
+    let (tau, p, loads) = ([0.0], [0.0; 0], [0.0; 0]);
+    let inputs = Inputs::<f64, StiffPendulum> {
+        tau: &tau,
+        parameters: &p,
+        loads: &loads,
+    };
+    let start = State::<f64, StiffPendulum> {
+        q: [0.5],
+        v: [f64::NAN],
+    };
+    assert_eq!(
+        integrators::variational_midpoint(&start, &inputs, 1e-3, 1e-12, 10).err(),
+        Some(StepError::NonFinite)
+    );
 }

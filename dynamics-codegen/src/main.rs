@@ -43,6 +43,11 @@ fn parse_args() -> Result<Options, String> {
     })
 }
 
+/// Whether `file` is read as a URDF file (by its extension) rather than as Rust.
+fn is_urdf(file: &Path) -> bool {
+    file.extension().is_some_and(|e| e == "urdf")
+}
+
 /// The folder URDF paths are relative to: the nearest ancestor with a Cargo.toml.
 fn manifest_dir(file: &Path) -> PathBuf {
     let start = file.parent().unwrap_or(Path::new("."));
@@ -56,24 +61,15 @@ fn manifest_dir(file: &Path) -> PathBuf {
 fn mechanisms(file: &Path) -> Result<Vec<(Mechanism, PathBuf)>, String> {
     let text = std::fs::read_to_string(file)
         .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
-    if file.extension().is_some_and(|e| e == "urdf") {
+    if is_urdf(file) {
         let stem = file.file_stem().and_then(|s| s.to_str()).unwrap_or("robot");
-        let name: String = stem
-            .split(|c: char| !c.is_ascii_alphanumeric())
-            .filter(|w| !w.is_empty())
-            .map(|w| w[..1].to_ascii_uppercase() + &w[1..])
-            .collect();
         let path = file
             .file_name()
             .and_then(|f| f.to_str())
             .unwrap_or_default();
         let tokens: proc_macro2::TokenStream = format!(
             "pub struct {}; urdf: {:?}; gravity: [0.0, 0.0, -9.81];",
-            if name.is_empty() {
-                "Robot".to_owned()
-            } else {
-                name
-            },
+            struct_name(stem),
             path
         )
         .parse()
@@ -82,7 +78,7 @@ fn mechanisms(file: &Path) -> Result<Vec<(Mechanism, PathBuf)>, String> {
         let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
         return Ok(vec![(mechanism, dir)]);
     }
-    let parsed = syn::parse_file(&text).map_err(|e| format!("{}: {e}", file.display()))?;
+    let parsed = syn::parse_file(&text).map_err(|e| located(file, e))?;
     let dir = manifest_dir(file);
     let mut found = Vec::new();
     for item in parsed.items {
@@ -93,13 +89,48 @@ fn mechanisms(file: &Path) -> Result<Vec<(Mechanism, PathBuf)>, String> {
                 .last()
                 .is_some_and(|s| s.ident == "mechanism")
             {
-                let mechanism =
-                    syn::parse2(m.mac.tokens).map_err(|e| format!("{}: {e}", file.display()))?;
+                let mechanism = syn::parse2(m.mac.tokens).map_err(|e| located(file, e))?;
                 found.push((mechanism, dir.clone()));
             }
         }
     }
     Ok(found)
+}
+
+/// The struct name for a URDF file's stem: its ASCII letters and digits in CamelCase
+/// (`two_link` → `TwoLink`), `Robot` when there are none, prefixed with `Urdf` when that is
+/// not an identifier (`2link` → `Urdf2link`, `self` → `UrdfSelf`).
+fn struct_name(stem: &str) -> String {
+    let name: String = stem
+        .split(|c: char| !c.is_ascii_alphanumeric())
+        .filter(|w| !w.is_empty())
+        .map(|w| w[..1].to_ascii_uppercase() + &w[1..])
+        .collect();
+    if name.is_empty() {
+        "Robot".to_owned()
+    } else if syn::parse_str::<syn::Ident>(&name).is_ok() {
+        name
+    } else {
+        format!("Urdf{name}")
+    }
+}
+
+/// `error`'s messages, each as `file:line:column: message` at the start of its span (line
+/// and column counted from 1, as compilers print them).
+fn located(file: &Path, error: syn::Error) -> String {
+    error
+        .into_iter()
+        .map(|e| {
+            let start = e.span().start();
+            format!(
+                "{}:{}:{}: {e}",
+                file.display(),
+                start.line,
+                start.column + 1
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 fn op_table(compiled: &Compiled) -> String {
@@ -121,10 +152,16 @@ fn run(options: &Options) -> Result<(), String> {
         }
         any = true;
         let compiled = compile(mechanism, &dir).map_err(|e| {
-            e.into_iter()
-                .map(|e| format!("error: {e}"))
-                .collect::<Vec<_>>()
-                .join("\n")
+            if is_urdf(&options.file) {
+                // The spans are those of the declaration made up for the file, not of a
+                // place in it; URDF errors name their line and column in the message.
+                e.into_iter()
+                    .map(|e| format!("{}: error: {e}", options.file.display()))
+                    .collect::<Vec<_>>()
+                    .join("\n")
+            } else {
+                located(&options.file, e)
+            }
         })?;
         let text = if options.ops_only {
             op_table(&compiled)

@@ -13,13 +13,25 @@
 //! The XML is parsed by roxmltree; `read` maps its elements to URDF's meaning, as urdfdom
 //! and urdf-rs do: the `<link>` and `<joint>` children of the root element, matched by local
 //! name (so namespaces, comments and other elements such as `<material>`, `<gazebo>` and
-//! `<transmission>` pass unread); numbers parsed as Rust parses `f64` after trimming, a
-//! vector as the numbers among its space-separated words; a link without `<inertial>` has
+//! `<transmission>` pass unread); a number parsed as Rust parses `f64` after trimming, a
+//! vector as its space-separated words, each of which must be a number, exactly as many as
+//! the attribute takes, all finite (a word such as `O.2` or `nan` is an error naming the
+//! attribute, its element and the word, as urdfdom rejects it); a link without `<inertial>` has
 //! zero mass and inertia, a missing `<origin>` or attribute of it is zero (the identity),
 //! a missing `<axis>` is x; `quat_xyzw` replaces `rpy` from URDF 1.1 on; `<limit>`,
 //! `<visual>`, `<collision>`, `<calibration>` and `<safety_controller>` are not read. A
 //! file that is not well-formed XML, or lacks an element or attribute URDF requires, is
-//! reported at its line and column.
+//! reported at its line and column; so is a root element other than `<robot>`.
+//!
+//! A `continuous` joint has **one** coordinate here, its angle, unbounded (the same
+//! coordinate as `revolute`, whose limits are not read). Pinocchio gives a continuous joint
+//! two configuration coordinates, (cos θ, sin θ), and one velocity: configurations exchanged
+//! with Pinocchio must convert θ = atan2(sin, cos) for each continuous joint, and its NQ
+//! counts one per continuous joint more than this mechanism's.
+//!
+//! The import adds one joint of its own, attaching the root link to the ground:
+//! `ground_weld` (or `root_joint`, free, with `floating_base: true`), or `ground_weld_2`,
+//! `ground_weld_3`, ... when the file already uses that name.
 
 use crate::model::linear;
 use crate::syntax::{
@@ -111,8 +123,16 @@ pub fn import(
             continue;
         }
         let moving = matches!(kind, JointKind::Revolute | JointKind::Prismatic);
+        let mut docs = vec![format!(" Joint `{}` of `{written}`.", joint.name)];
+        if joint.kind == JointType::Continuous {
+            docs.push(
+                " A URDF `continuous` joint: one coordinate here, the angle θ (Pinocchio has \
+                 two, cos θ and sin θ)."
+                    .to_owned(),
+            );
+        }
         mechanism.joints.push(Joint {
-            docs: vec![format!(" Joint `{}` of `{written}`.", joint.name)],
+            docs,
             name: name(&joint.name),
             kind,
             kind_span: span,
@@ -138,11 +158,14 @@ pub fn import(
     match roots.as_slice() {
         [root] => mechanism.joints.push(Joint {
             docs: vec![format!(" Attaches the root link `{root}` to the ground.")],
-            name: name(if source.floating_base {
-                "root_joint"
-            } else {
-                "ground_weld"
-            }),
+            name: name(&fresh_joint_name(
+                if source.floating_base {
+                    "root_joint"
+                } else {
+                    "ground_weld"
+                },
+                &robot,
+            )),
             kind: if source.floating_base {
                 JointKind::Free
             } else {
@@ -158,6 +181,7 @@ pub fn import(
             damping: None,
             driven: None,
         }),
+        [] => refuse(no_root(&robot)),
         _ => refuse(format!(
             "expected exactly one root link (a link that is no joint's child), found {}: {}",
             roots.len(),
@@ -167,6 +191,60 @@ pub fn import(
     match errors {
         Some(e) => Err(e),
         None => Ok(Some(path)),
+    }
+}
+
+/// The name of the joint the import adds to attach the root link: `base` (`root_joint` or
+/// `ground_weld`) unless the file already names a joint or link so, else the first of
+/// `base_2`, `base_3`, ... that it does not use, so that the import never collides with a
+/// name of the file.
+fn fresh_joint_name(base: &str, robot: &Robot) -> String {
+    let used = |candidate: &str| {
+        robot.joints.iter().any(|j| j.name == candidate)
+            || robot.links.iter().any(|l| l.name == candidate)
+    };
+    if !used(base) {
+        return base.to_owned();
+    }
+    (2..)
+        .map(|k| format!("{base}_{k}"))
+        .find(|candidate| !used(candidate))
+        .unwrap_or_else(|| base.to_owned())
+}
+
+/// Why a file has no root link (every link is some joint's child): no links at all, the
+/// joints forming a cycle (named, found by walking up from the first link through the
+/// parents), or a parent that is not a declared link.
+fn no_root(robot: &Robot) -> String {
+    let Some(first) = robot.links.first() else {
+        return "the file declares no `<link>`, so there is no root link".to_owned();
+    };
+    let parent_joint = |link: &str| robot.joints.iter().find(|j| j.child == link);
+    // The joints met walking up from `first`, each to the parent of the one before.
+    let mut path: Vec<&UrdfJoint> = Vec::new();
+    let mut link = first.name.as_str();
+    loop {
+        if let Some(start) = path.iter().position(|j| j.child == link) {
+            let steps: Vec<String> = path[start..]
+                .iter()
+                .rev()
+                .map(|j| format!("`{}` → `{}` (joint `{}`)", j.parent, j.child, j.name))
+                .collect();
+            return format!(
+                "there is no root link (every link is some joint's child) because the joints \
+                 form a cycle: {}",
+                steps.join(", ")
+            );
+        }
+        let Some(joint) = parent_joint(link) else {
+            return format!(
+                "there is no root link (every link is some joint's child): the parents of \
+                 link `{}` lead to `{link}`, which is not a `<link>` of the file",
+                first.name
+            );
+        };
+        path.push(joint);
+        link = &joint.parent;
     }
 }
 
@@ -306,6 +384,15 @@ fn read(text: &str) -> Result<Robot, Malformed> {
     };
     let document = Document::parse_with_options(text, options).map_err(|e| Malformed::xml(&e))?;
     let robot = document.root_element();
+    if robot.tag_name().name() != "robot" {
+        return Err(Malformed {
+            at: Some(document.text_pos_at(robot.range().start)),
+            message: format!(
+                "the root element is `<{}>`; a URDF file's root element is `<robot>`",
+                robot.tag_name().name()
+            ),
+        });
+    }
     let reader = Reader {
         document: &document,
         quaternions: version(robot) >= (1, 1),
@@ -429,13 +516,19 @@ impl<'a, 'input> Reader<'a, 'input> {
         self.error(at, message)
     }
 
-    /// The number in attribute `name`, if present.
+    /// The number in attribute `name`, if present: one finite number (surrounding spaces
+    /// allowed), as urdfdom requires.
     fn number(&self, element: Node, name: &str, what: &str) -> Result<Option<f64>, Malformed> {
         let Some(text) = element.attribute(name) else {
             return Ok(None);
         };
         match text.trim().parse::<f64>() {
-            Ok(x) => Ok(Some(x)),
+            Ok(x) if x.is_finite() => Ok(Some(x)),
+            Ok(_) => Err(self.at_value(
+                element,
+                name,
+                format!("`{name}` of {what} is `{text}`, which is not a finite number"),
+            )),
             Err(_) => Err(self.at_value(
                 element,
                 name,
@@ -455,7 +548,9 @@ impl<'a, 'input> Reader<'a, 'input> {
         Ok(self.number(element, name, what)?.unwrap_or_default())
     }
 
-    /// The `N` numbers among the space-separated words of attribute `name`, if present.
+    /// The `N` space-separated numbers of attribute `name`, if present. Every word must be a
+    /// finite number and there must be exactly `N` of them, as in urdfdom: a word that is not
+    /// a number (`O.2` for `0.2`) is an error naming it, never passed over.
     fn numbers<const N: usize>(
         &self,
         element: Node,
@@ -465,10 +560,31 @@ impl<'a, 'input> Reader<'a, 'input> {
         let Some(text) = element.attribute(name) else {
             return Ok(None);
         };
-        let numbers: Vec<f64> = text
-            .split_whitespace()
-            .filter_map(|word| word.parse().ok())
-            .collect();
+        let mut numbers = Vec::with_capacity(N);
+        for word in text.split_whitespace() {
+            match word.parse::<f64>() {
+                Ok(x) if x.is_finite() => numbers.push(x),
+                Ok(_) => {
+                    return Err(self.at_value(
+                        element,
+                        name,
+                        format!(
+                            "`{name}` of {what} is `{text}`, in which `{word}` is not a finite \
+                             number"
+                        ),
+                    ))
+                }
+                Err(_) => {
+                    return Err(self.at_value(
+                        element,
+                        name,
+                        format!(
+                            "`{name}` of {what} is `{text}`, in which `{word}` is not a number"
+                        ),
+                    ))
+                }
+            }
+        }
         numbers.try_into().map(Some).map_err(|numbers: Vec<f64>| {
             self.at_value(
                 element,
@@ -496,17 +612,9 @@ impl<'a, 'input> Reader<'a, 'input> {
                     format!("{what} has both `rpy` and `quat_xyzw`; give one or the other"),
                 ));
             }
-            let quaternion = origin.attribute("quat_xyzw").unwrap_or_default();
-            let words: Result<Vec<f64>, _> =
-                quaternion.split_whitespace().map(str::parse).collect();
-            let q: [f64; 4] = words.ok().and_then(|w| w.try_into().ok()).ok_or_else(|| {
-                self.at_value(
-                    origin,
-                    "quat_xyzw",
-                    format!("`quat_xyzw` of {what} is `{quaternion}`, not four numbers"),
-                )
-            })?;
-            rpy = quaternion_to_rpy(q);
+            if let Some(q) = self.numbers::<4>(origin, "quat_xyzw", &what)? {
+                rpy = quaternion_to_rpy(q);
+            }
         }
         Ok(Pose { xyz, rpy })
     }
@@ -783,6 +891,11 @@ mod tests {
         .expect("imports");
         let [spin, slide, weld] = [&m.joints[0], &m.joints[1], &m.joints[2]];
         assert_eq!(spin.kind, JointKind::Revolute);
+        assert!(
+            spin.docs.iter().any(|d| d.contains("Pinocchio")),
+            "{:?}",
+            spin.docs
+        );
         assert_eq!(
             spin.axis.as_ref().map(|a| vector3(&a.direction)),
             Some([1.0, 0.0, 0.0])
@@ -1000,6 +1113,144 @@ mod tests {
                  (use revolute, continuous, prismatic or fixed joints)",
             ]
         );
+    }
+
+    /// Two links `base` and `arm` joined by a revolute joint `j` with `origin` as its
+    /// `<origin>` element and `axis` as its `<axis>` element.
+    fn one_joint(version: &str, origin: &str, axis: &str) -> String {
+        format!(
+            r#"<robot name="r" {version}><link name="base"/>{}
+               <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+               {origin}{axis}</joint></robot>"#,
+            link("arm")
+        )
+    }
+
+    #[test]
+    fn words_that_are_not_finite_numbers_are_errors_not_dropped() {
+        // Each used to import: the bad word was passed over and the rest read as the vector.
+        let cases = [
+            (
+                one_joint("", r#"<origin xyz="0.1 O.2 0.3 0.4"/>"#, ""),
+                "`xyz` of the `<origin>` of joint `j` is `0.1 O.2 0.3 0.4`, in which `O.2` is \
+                 not a number",
+            ),
+            (
+                one_joint("", "", r#"<axis xyz="0 zero 0 1"/>"#),
+                "`xyz` of the `<axis>` of joint `j` is `0 zero 0 1`, in which `zero` is not a \
+                 number",
+            ),
+            (
+                one_joint(r#"version="1.1""#, r#"<origin quat_xyzw="nan 0 0 1"/>"#, ""),
+                "`quat_xyzw` of the `<origin>` of joint `j` is `nan 0 0 1`, in which `nan` is \
+                 not a finite number",
+            ),
+            (
+                one_joint(r#"version="1.1""#, r#"<origin quat_xyzw="0 0 1"/>"#, ""),
+                "`quat_xyzw` of the `<origin>` of joint `j` is `0 0 1`, which has 3 numbers; it \
+                 needs 4",
+            ),
+            (
+                one_joint("", r#"<origin xyz="0 0 0 1"/>"#, ""),
+                "`xyz` of the `<origin>` of joint `j` is `0 0 0 1`, which has 4 numbers; it \
+                 needs 3",
+            ),
+            (
+                one_joint("", r#"<origin rpy="inf 0 0"/>"#, ""),
+                "`rpy` of the `<origin>` of joint `j` is `inf 0 0`, in which `inf` is not a \
+                 finite number",
+            ),
+            (
+                r#"<robot name="r"><link name="arm"><inertial><mass value="NaN"/>
+                   <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+                   </robot>"#
+                    .to_owned(),
+                "`value` of the `<mass>` of link `arm` is `NaN`, which is not a finite number",
+            ),
+        ];
+        for (i, (text, expected)) in cases.iter().enumerate() {
+            let e = import_text(&format!("bad-word-{i}"), text).expect_err(expected);
+            let message = e.to_string();
+            assert!(
+                message.starts_with("URDF file `robot.urdf` is malformed at line ")
+                    && message.ends_with(expected),
+                "{message}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_root_element_must_be_robot() {
+        let e = import_text(
+            "not-robot",
+            r#"<model name="r"><link name="base"/></model>"#,
+        )
+        .expect_err("not a robot");
+        assert_eq!(
+            e.to_string(),
+            "URDF file `robot.urdf` is malformed at line 1, column 1: the root element is \
+             `<model>`; a URDF file's root element is `<robot>`"
+        );
+    }
+
+    #[test]
+    fn a_cycle_without_a_root_link_is_named() {
+        let e = import_text(
+            "cycle",
+            &format!(
+                r#"<robot name="r">{}{}{}
+                   <joint name="ab" type="revolute"><parent link="a"/><child link="b"/></joint>
+                   <joint name="bc" type="revolute"><parent link="b"/><child link="c"/></joint>
+                   <joint name="ca" type="revolute"><parent link="c"/><child link="a"/></joint>
+                   </robot>"#,
+                link("a"),
+                link("b"),
+                link("c")
+            ),
+        )
+        .expect_err("cycle");
+        assert_eq!(
+            e.to_string(),
+            "URDF file `robot.urdf`: there is no root link (every link is some joint's child) \
+             because the joints form a cycle: `a` → `b` (joint `ab`), `b` → `c` (joint `bc`), \
+             `c` → `a` (joint `ca`)"
+        );
+        let e = import_text("no-links", r#"<robot name="r"/>"#).expect_err("no links");
+        assert!(e.to_string().contains("declares no `<link>`"), "{e}");
+    }
+
+    #[test]
+    fn the_added_root_joint_does_not_collide_with_the_file_names() {
+        for (floating, name) in [(false, "ground_weld"), (true, "root_joint")] {
+            let text = format!(
+                r#"<robot name="r"><link name="base"/>{}{}
+                   <joint name="{name}" type="revolute"><parent link="base"/><child link="a"/>
+                   </joint>
+                   <joint name="{name}_2" type="revolute"><parent link="a"/><child link="b"/>
+                   </joint></robot>"#,
+                link("a"),
+                link("b")
+            );
+            let dir = std::env::temp_dir().join(format!(
+                "dynamics-codegen-urdf-collision-{floating}-{}",
+                std::process::id()
+            ));
+            std::fs::create_dir_all(&dir).expect("temporary directory");
+            std::fs::write(dir.join("robot.urdf"), text).expect("write URDF");
+            let mut m: syntax::Mechanism = syn::parse2(if floating {
+                quote! { struct R; urdf: "robot.urdf"; floating_base: true; }
+            } else {
+                quote! { struct R; urdf: "robot.urdf"; }
+            })
+            .expect("parses");
+            let result = import(&mut m, &dir);
+            std::fs::remove_dir_all(&dir).expect("remove temporary directory");
+            result.expect("imports");
+            let names: Vec<&str> = m.joints.iter().map(|j| j.name.text.as_str()).collect();
+            let added = format!("{name}_3");
+            assert_eq!(names, [name, &format!("{name}_2"), &added]);
+            crate::model::lower(&m).expect("no duplicate joint name");
+        }
     }
 
     #[test]

@@ -46,6 +46,27 @@ pub enum ClosureError {
     /// A matrix to be factored is singular (pivot smaller than 1e-13 of the largest):
     /// a singular configuration of the loop, or M not positive definite.
     Singular,
+    /// Coordinate `q[index]` given to [`Closure::positions`] is NaN or infinite.
+    NonFiniteCoordinate {
+        /// Its index in q.
+        index: usize,
+    },
+    /// Component `component` of the residual φ(q) is NaN or infinite after `iterations`
+    /// Newton iterations: the closure functions blew up, or a step diverged.
+    NonFiniteResidual {
+        /// The first non-finite component of φ.
+        component: usize,
+        /// Newton iterations done before φ was evaluated.
+        iterations: usize,
+    },
+    /// A solve's result is NaN or infinite: a non-finite entry in the Jacobian, the
+    /// right-hand side or the known coordinates.
+    NonFiniteSolution,
+    /// An argument outside its domain; `what` says which and what it must be.
+    InvalidArgument {
+        /// The argument and its domain, e.g. "tolerance must be finite and positive".
+        what: &'static str,
+    },
 }
 
 impl fmt::Display for ClosureError {
@@ -74,6 +95,22 @@ impl fmt::Display for ClosureError {
                 f,
                 "singular matrix: the loop is at a singular configuration"
             ),
+            ClosureError::NonFiniteCoordinate { index } => {
+                write!(f, "coordinate q[{index}] is not a finite number")
+            }
+            ClosureError::NonFiniteResidual {
+                component,
+                iterations,
+            } => write!(
+                f,
+                "closure residual φ[{component}] is not a finite number after {iterations} \
+                 Newton iterations"
+            ),
+            ClosureError::NonFiniteSolution => write!(
+                f,
+                "the linear solve gave a non-finite value (a NaN or infinite input)"
+            ),
+            ClosureError::InvalidArgument { what } => write!(f, "invalid argument: {what}"),
         }
     }
 }
@@ -82,7 +119,7 @@ impl std::error::Error for ClosureError {}
 
 /// Solves the square system a x = b (by rows, the first `n` rows and columns) in place by
 /// Gaussian elimination with partial pivoting; `Singular` if a pivot is below 1e-13 of the
-/// largest entry.
+/// largest entry or `a` has a NaN entry, `NonFiniteSolution` if x is not finite.
 fn solve_square<T: Scalar + PartialOrd, const K: usize>(
     a: &mut [[T; K]; K],
     b: &mut [T; K],
@@ -92,6 +129,9 @@ fn solve_square<T: Scalar + PartialOrd, const K: usize>(
         for &x in row {
             if abs(x) > scale {
                 scale = abs(x);
+            } else if !is_number(x) {
+                // `>` is false for NaN, which would otherwise be passed over.
+                return Err(ClosureError::Singular);
             }
         }
     }
@@ -126,7 +166,21 @@ fn solve_square<T: Scalar + PartialOrd, const K: usize>(
         }
         b[j] = sum / a[j][j];
     }
-    Ok(())
+    if b.iter().all(|&x| is_finite(x)) {
+        Ok(())
+    } else {
+        Err(ClosureError::NonFiniteSolution)
+    }
+}
+
+/// Whether `x` is not NaN (NaN is the one value unequal to itself).
+fn is_number<T: PartialOrd>(x: T) -> bool {
+    x.partial_cmp(&x).is_some()
+}
+
+/// Whether `x` is neither NaN nor infinite (0 · x is NaN for both, ±0 otherwise).
+fn is_finite<T: Scalar + PartialOrd>(x: T) -> bool {
+    x * T::zero() == T::zero()
 }
 
 /// Which coordinates are dependent, for NC closure equations over NV coordinates.
@@ -196,7 +250,15 @@ impl<const NC: usize, const NV: usize> Closure<NC, NV> {
     }
 
     /// Closes the loops: Newton's method on φ(q) = 0 over the dependent coordinates, from
-    /// the values in `q`, until max |φ_i| ≤ `tolerance`; returns the iterations used.
+    /// the values in `q`, until max |φ_i| ≤ `tolerance`; returns the iterations used (0 when
+    /// `q` already closes the loops).
+    ///
+    /// Errors: [`ClosureError::InvalidArgument`] unless `tolerance` is finite and positive;
+    /// [`ClosureError::NonFiniteCoordinate`] if a coordinate of `q` is NaN or infinite on
+    /// entry; [`ClosureError::NonFiniteResidual`] if φ has a NaN or infinite component (never
+    /// read as closed); [`ClosureError::NotConverged`] after `max_iterations` Newton steps
+    /// (0 only tests `q`); [`ClosureError::Singular`] at a singular configuration. On error
+    /// `q` holds the last iterate.
     pub fn positions<T: Real>(
         &self,
         q: &mut [T; NV],
@@ -205,17 +267,34 @@ impl<const NC: usize, const NV: usize> Closure<NC, NV> {
         tolerance: T,
         max_iterations: usize,
     ) -> Result<usize, ClosureError> {
-        let norm = |phi: &[T; NC]| {
-            phi.iter()
-                .fold(T::zero(), |m, &x| if abs(x) > m { abs(x) } else { m })
-        };
+        if !(is_finite(tolerance) && tolerance > T::zero()) {
+            return Err(ClosureError::InvalidArgument {
+                what: "the closure tolerance must be finite and positive",
+            });
+        }
+        if let Some(index) = q.iter().position(|&x| !is_finite(x)) {
+            return Err(ClosureError::NonFiniteCoordinate { index });
+        }
         for iteration in 0..=max_iterations {
             let phi = residual(q);
-            let size = norm(&phi);
+            // max |φ_i|, with a NaN or infinite component an error rather than passed over
+            // (`>` is false for NaN).
+            let mut size = T::zero();
+            for (component, &x) in phi.iter().enumerate() {
+                if !is_finite(x) {
+                    return Err(ClosureError::NonFiniteResidual {
+                        component,
+                        iterations: iteration,
+                    });
+                }
+                if abs(x) > size {
+                    size = abs(x);
+                }
+            }
             if size <= tolerance {
                 return Ok(iteration);
             }
-            if iteration == max_iterations || size.partial_cmp(&size).is_none() {
+            if iteration == max_iterations {
                 return Err(ClosureError::NotConverged {
                     residual: size.to_f64(),
                     iterations: iteration,
@@ -237,7 +316,8 @@ impl<const NC: usize, const NV: usize> Closure<NC, NV> {
     }
 
     /// The dependent velocities that keep the loops closed, Φ_q q̇ = 0, given the driving
-    /// ones in `v`.
+    /// ones in `v`: [`ClosureError::Singular`] at a singular configuration (or a NaN in the
+    /// dependent columns), [`ClosureError::NonFiniteSolution`] if a result is not finite.
     pub fn velocities<T: Scalar + PartialOrd>(
         &self,
         jacobian: &[[T; NV]; NC],
@@ -246,7 +326,8 @@ impl<const NC: usize, const NV: usize> Closure<NC, NV> {
         self.solve_dependent(jacobian, &[T::zero(); NC], v)
     }
 
-    /// The dependent accelerations with Φ_q q̈ = γ, given the driving ones in `a`.
+    /// The dependent accelerations with Φ_q q̈ = γ, given the driving ones in `a`; errors as
+    /// for [`Closure::velocities`].
     pub fn accelerations<T: Scalar + PartialOrd>(
         &self,
         jacobian: &[[T; NV]; NC],
@@ -321,6 +402,10 @@ fn cholesky_solve<T: Scalar, const K: usize>(l: &[[T; K]; K], b: &[T; K]) -> [T;
 /// Forward dynamics of a closed mechanism: (q̈, λ) with M q̈ − Φ_qᵀ λ = τ − h and
 /// Φ_q q̈ = γ − 2ζω φ̇ − ω² φ (see the module docs). `forces` is τ − h (h the bias forces
 /// C q̇ + g + b q̇ of the tree), `rate` is φ̇ = Φ_q q̇.
+///
+/// Errors: [`ClosureError::Singular`] if M or the Schur complement is not positive definite
+/// (or has a NaN entry), [`ClosureError::NonFiniteSolution`] if q̈ or λ is not finite (a NaN
+/// or infinite input).
 #[allow(clippy::too_many_arguments)]
 pub fn constrained_acceleration<T: Scalar + PartialOrd, const NV: usize, const NC: usize>(
     mass_matrix: &[[T; NV]; NV],
@@ -361,7 +446,11 @@ pub fn constrained_acceleration<T: Scalar + PartialOrd, const NV: usize, const N
             qdd[r] += d;
         }
     }
-    Ok((qdd, lambda))
+    if qdd.iter().chain(&lambda).all(|&x| is_finite(x)) {
+        Ok((qdd, lambda))
+    } else {
+        Err(ClosureError::NonFiniteSolution)
+    }
 }
 
 #[cfg(test)]
@@ -421,6 +510,100 @@ mod tests {
                 ClosureError::NotConverged { .. } | ClosureError::Singular
             ),
             "{e:?}"
+        );
+    }
+
+    fn close_circle(q: &mut [f64; 2], tolerance: f64) -> Result<usize, ClosureError> {
+        let closure = Closure::<1, 2>::new(&[0]).expect("valid");
+        closure.positions(
+            q,
+            |q| [q[0] * q[0] + q[1] * q[1] - 1.0],
+            |q| [[2.0 * q[0], 2.0 * q[1]]],
+            tolerance,
+            20,
+        )
+    }
+
+    #[test]
+    fn a_nan_coordinate_is_an_error_not_a_closed_loop() {
+        // The max norm used to pass over NaN, so φ = NaN read as |φ| = 0: Ok(0), q unchanged.
+        let mut q = [0.6, f64::NAN];
+        assert_eq!(
+            close_circle(&mut q, 1e-12),
+            Err(ClosureError::NonFiniteCoordinate { index: 1 })
+        );
+        let mut q = [f64::INFINITY, 0.8];
+        assert_eq!(
+            close_circle(&mut q, 1e-12),
+            Err(ClosureError::NonFiniteCoordinate { index: 0 })
+        );
+    }
+
+    #[test]
+    fn a_non_finite_residual_is_an_error() {
+        let closure = Closure::<2, 3>::new(&[0]).expect("valid");
+        let mut q = [0.5, 0.5, 0.5];
+        let e = closure.positions(
+            &mut q,
+            |q| [q[1] - q[0], f64::NAN * q[2]],
+            |_| [[-1.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            1e-12,
+            20,
+        );
+        assert_eq!(
+            e,
+            Err(ClosureError::NonFiniteResidual {
+                component: 1,
+                iterations: 0
+            })
+        );
+    }
+
+    #[test]
+    fn a_tolerance_that_cannot_be_met_is_an_invalid_argument() {
+        for tolerance in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let mut q = [0.6, 0.9];
+            assert!(
+                matches!(
+                    close_circle(&mut q, tolerance),
+                    Err(ClosureError::InvalidArgument { .. })
+                ),
+                "{tolerance}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_nan_in_a_solve_is_an_error_not_a_result() {
+        let closure = Closure::<1, 2>::new(&[0]).expect("valid");
+        // A NaN driving velocity used to give a NaN dependent one, as a success.
+        let mut v = [f64::NAN, 0.0];
+        assert_eq!(
+            closure.velocities(&[[1.2, 1.6]], &mut v),
+            Err(ClosureError::NonFiniteSolution)
+        );
+        // A NaN in the dependent column.
+        let mut v = [1.0, 0.0];
+        assert_eq!(
+            closure.velocities(&[[1.2, f64::NAN]], &mut v),
+            Err(ClosureError::Singular)
+        );
+        let none = Baumgarte {
+            damping_ratio: 0.0,
+            frequency: 0.0,
+        };
+        let m = [[1.0, 0.0], [0.0, 1.0]];
+        assert_eq!(
+            constrained_acceleration(
+                &m,
+                &[f64::NAN, 0.0],
+                &[[2.0, 0.0]],
+                &[-8.0],
+                &[0.0],
+                &[0.0],
+                none
+            ),
+            Err(ClosureError::NonFiniteSolution)
         );
     }
 

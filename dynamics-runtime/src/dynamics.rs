@@ -77,20 +77,88 @@ pub trait Lagrangian<T: Scalar>: Dynamics<T> {
     fn gravity(q: &Self::Configuration, parameters: &Self::Parameters) -> Self::Velocity;
 }
 
+/// Why [`try_integrate_configuration`] cannot apply its free-joint table to its arrays.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LayoutError {
+    /// `out` does not have the length of `q`.
+    OutputLength {
+        /// `q.len()`.
+        expected: usize,
+        /// `out.len()`.
+        found: usize,
+    },
+    /// A free-joint entry (configuration index, velocity index) that does not start a
+    /// block of 7 coordinates and 6 velocities where the walk over `q` and `v` reaches it:
+    /// out of range, out of increasing order, overlapping the previous free joint, or with a
+    /// velocity index that does not match the coordinates before it.
+    FreeJoint {
+        /// Its configuration index.
+        configuration: usize,
+        /// Its velocity index.
+        velocity: usize,
+    },
+    /// `q.len()` is not `v.len()` plus one per free joint (each free joint has 7
+    /// coordinates and 6 velocities, every other joint one of each).
+    CoordinateCount {
+        /// `q.len()`.
+        configuration: usize,
+        /// `v.len()`.
+        velocity: usize,
+        /// Entries in the free-joint table.
+        free_joints: usize,
+    },
+}
+
+impl std::fmt::Display for LayoutError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            LayoutError::OutputLength { expected, found } => write!(
+                f,
+                "the output has {found} coordinates, the configuration {expected}"
+            ),
+            LayoutError::FreeJoint {
+                configuration,
+                velocity,
+            } => write!(
+                f,
+                "free joint at configuration index {configuration} and velocity index \
+                 {velocity} does not fit the arrays (out of range, out of order, overlapping, \
+                 or its indices disagree)"
+            ),
+            LayoutError::CoordinateCount {
+                configuration,
+                velocity,
+                free_joints,
+            } => write!(
+                f,
+                "{configuration} coordinates and {velocity} velocities do not fit \
+                 {free_joints} free joints (NQ must be NV + the number of free joints)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for LayoutError {}
+
 /// The configuration reached from `q` by moving with velocity `v` for `dt`, written into
 /// `out`: joint coordinates advance by `v dt`; a free joint (its first configuration index
-/// and first velocity index in `free_joints`) moves its origin by `R v_lin dt` and turns its
-/// quaternion by the body-frame rotation `ω dt` through the Cayley map
-/// `q ⊗ (ω dt/2, 1)`, normalized: branch-free, second-order accurate in the angle, and
-/// unit-norm to rounding at every step, so the quaternion stays on the manifold however
-/// long the run.
-pub fn integrate_configuration<T: Scalar>(
+/// and first velocity index in `free_joints`, in increasing order) moves its origin by
+/// `R v_lin dt` and turns its quaternion by the body-frame rotation `ω dt` through the
+/// Cayley map `q ⊗ (ω dt/2, 1)`, normalized: branch-free, second-order accurate in the
+/// angle, and unit-norm to rounding at every step, so the quaternion stays on the manifold
+/// however long the run.
+///
+/// The table and the arrays are checked first, and `out` is left untouched when they
+/// disagree ([`LayoutError`]): `out.len() == q.len()`, every free joint a block of 7
+/// coordinates and 6 velocities at matching places, `q.len() == v.len() + free_joints.len()`.
+pub fn try_integrate_configuration<T: Scalar>(
     q: &[T],
     v: &[T],
     dt: T,
     free_joints: &[(usize, usize)],
     out: &mut [T],
-) {
+) -> Result<(), LayoutError> {
+    check_layout(q.len(), v.len(), free_joints, out.len())?;
     out.copy_from_slice(q);
     // Joint coordinates: q_k += v_k dt, for every coordinate outside a free joint.
     let mut k_q = 0;
@@ -107,6 +175,73 @@ pub fn integrate_configuration<T: Scalar>(
         k_q += 1;
         k_v += 1;
     }
+    Ok(())
+}
+
+/// [`try_integrate_configuration`] for arrays and a free-joint table that agree, as the
+/// generated `Dynamics::integrate` passes them (`[T; NQ]`, `[T; NV]`, its own free joints):
+/// the form generated code calls.
+///
+/// # Panics
+///
+/// If the table and the arrays disagree (the [`LayoutError`] cases), which generated code
+/// cannot cause; call [`try_integrate_configuration`] with tables built at run time.
+pub fn integrate_configuration<T: Scalar>(
+    q: &[T],
+    v: &[T],
+    dt: T,
+    free_joints: &[(usize, usize)],
+    out: &mut [T],
+) {
+    if let Err(e) = try_integrate_configuration(q, v, dt, free_joints, out) {
+        panic!("integrate_configuration: {e}");
+    }
+}
+
+/// The checks of [`try_integrate_configuration`], on lengths and the table alone.
+fn check_layout(
+    nq: usize,
+    nv: usize,
+    free_joints: &[(usize, usize)],
+    out: usize,
+) -> Result<(), LayoutError> {
+    if out != nq {
+        return Err(LayoutError::OutputLength {
+            expected: nq,
+            found: out,
+        });
+    }
+    let (mut k_q, mut k_v) = (0, 0);
+    let mut joints = free_joints.iter().peekable();
+    while k_q < nq && k_v < nv {
+        if let Some(&(fq, fv)) = joints.next_if(|&&(fq, _)| fq == k_q) {
+            if fv != k_v || fq + 7 > nq || fv + 6 > nv {
+                return Err(LayoutError::FreeJoint {
+                    configuration: fq,
+                    velocity: fv,
+                });
+            }
+            k_q += 7;
+            k_v += 6;
+        } else {
+            k_q += 1;
+            k_v += 1;
+        }
+    }
+    if let Some(&&(configuration, velocity)) = joints.peek() {
+        return Err(LayoutError::FreeJoint {
+            configuration,
+            velocity,
+        });
+    }
+    if k_q != nq || k_v != nv {
+        return Err(LayoutError::CoordinateCount {
+            configuration: nq,
+            velocity: nv,
+            free_joints: free_joints.len(),
+        });
+    }
+    Ok(())
 }
 
 /// One free joint: position += R(quat) v_lin dt; quat ← quat ⊗ Cayley(ω dt).
@@ -168,5 +303,69 @@ mod tests {
         );
         // The coordinate after the free joint advanced by v dt.
         assert!((q[7] - 0.3).abs() < 1e-15);
+    }
+
+    #[test]
+    fn an_inconsistent_layout_is_an_error_and_leaves_out_untouched() {
+        let q = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.3];
+        let v = [0.0; 7];
+        let try_with = |free: &[(usize, usize)], out_len: usize| {
+            let mut out = [f64::NAN; 9];
+            let r = try_integrate_configuration(&q, &v, 1e-3, free, &mut out[..out_len]);
+            if r.is_err() {
+                assert!(out.iter().all(|x| x.is_nan()), "out written on error");
+            }
+            r
+        };
+        assert_eq!(try_with(&[(0, 0)], 8), Ok(()));
+        // Used to panic: "range end index 9 out of range" past the end of q.
+        assert_eq!(
+            try_with(&[(2, 2)], 8),
+            Err(LayoutError::FreeJoint {
+                configuration: 2,
+                velocity: 2
+            })
+        );
+        // A short output buffer used to panic in copy_from_slice.
+        assert_eq!(
+            try_with(&[(0, 0)], 7),
+            Err(LayoutError::OutputLength {
+                expected: 8,
+                found: 7
+            })
+        );
+        // A velocity index that disagrees with the coordinates before it.
+        assert_eq!(
+            try_with(&[(0, 1)], 8),
+            Err(LayoutError::FreeJoint {
+                configuration: 0,
+                velocity: 1
+            })
+        );
+        // A free joint the walk never reaches used to be silently treated as joint
+        // coordinates.
+        assert_eq!(
+            try_with(&[(0, 0), (20, 20)], 8),
+            Err(LayoutError::FreeJoint {
+                configuration: 20,
+                velocity: 20
+            })
+        );
+        // No free joint: 8 coordinates and 7 velocities do not match.
+        assert_eq!(
+            try_with(&[], 8),
+            Err(LayoutError::CoordinateCount {
+                configuration: 8,
+                velocity: 7,
+                free_joints: 0
+            })
+        );
+    }
+
+    #[test]
+    #[should_panic(expected = "integrate_configuration: free joint at configuration index 2")]
+    fn the_infallible_form_panics_with_the_reason() {
+        let mut out = [0.0; 8];
+        integrate_configuration(&[0.0; 8], &[0.0; 7], 1e-3, &[(2, 2)], &mut out);
     }
 }

@@ -149,6 +149,13 @@ pub enum StepError {
     /// derivative, so the midpoint (q + q')/2 and the difference quotient (q' − q)/h mean
     /// nothing there. Use [`implicit_midpoint`] or [`rk4`] for free-floating mechanisms.
     FreeJoint,
+    /// An argument outside its domain (checked before any work): the step `dt` and the
+    /// `tolerance` must be finite and positive, `max_iterations` at least 1. `what` names
+    /// the argument and its domain.
+    InvalidArgument {
+        /// The argument and what it must be, e.g. "dt must be finite and positive".
+        what: &'static str,
+    },
 }
 
 impl fmt::Display for StepError {
@@ -163,6 +170,7 @@ impl fmt::Display for StepError {
                 f,
                 "the variational midpoint rule works in joint coordinates; a free joint's quaternion is not one (use implicit_midpoint or rk4)"
             ),
+            StepError::InvalidArgument { what } => write!(f, "invalid argument: {what}"),
         }
     }
 }
@@ -175,6 +183,10 @@ impl std::error::Error for StepError {}
 /// coordinate) and Gaussian elimination with partial pivoting, until the Newton update is
 /// below `tolerance` (max norm), at most `max_iterations` times. Newton converges on stiff
 /// problems, where a fixed-point iteration would diverge.
+///
+/// Errors: [`StepError::InvalidArgument`] unless `dt` and `tolerance` are finite and
+/// positive and `max_iterations` ≥ 1; [`StepError::NonFinite`] when a NaN or infinite value
+/// appears; [`StepError::NotConverged`] after `max_iterations` updates above `tolerance`.
 pub fn implicit_midpoint<M: Dynamics<f64>>(
     s: &State<f64, M>,
     inputs: &Inputs<f64, M>,
@@ -182,6 +194,7 @@ pub fn implicit_midpoint<M: Dynamics<f64>>(
     tolerance: f64,
     max_iterations: usize,
 ) -> Result<State<f64, M>, StepError> {
+    check_arguments(dt, tolerance, max_iterations)?;
     let midpoint = |w: &M::Velocity| {
         let mut v_mid = s.v;
         for (m, (&a, &b)) in v_mid
@@ -221,7 +234,7 @@ pub fn implicit_midpoint<M: Dynamics<f64>>(
         }
         let mut step = f;
         solve_in_place(jacobian.as_mut(), step.as_mut()).ok_or(StepError::NonFinite)?;
-        last_change = step.as_ref().iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        last_change = max_norm(step.as_ref());
         for (wk, dk) in w.as_mut().iter_mut().zip(step.as_ref()) {
             *wk -= dk;
         }
@@ -242,10 +255,41 @@ pub fn implicit_midpoint<M: Dynamics<f64>>(
     })
 }
 
-/// max_k |x_k| (NaN entries are left to the finiteness checks).
+/// max_k |x_k|, NaN if an entry is NaN (a plain `>` or `f64::max` would pass NaN over and
+/// let a convergence test succeed on it).
 fn max_norm<T: Real>(x: &[T]) -> T {
-    x.iter()
-        .fold(T::zero(), |m, &xi| if abs(xi) > m { abs(xi) } else { m })
+    let mut m = T::zero();
+    for &xi in x {
+        let a = abs(xi);
+        if a.partial_cmp(&a).is_none() {
+            return a;
+        }
+        if a > m {
+            m = a;
+        }
+    }
+    m
+}
+
+/// The common preconditions of the implicit steps: `dt` and `tolerance` finite and positive,
+/// at least one iteration.
+fn check_arguments<T: Real>(dt: T, tolerance: T, max_iterations: usize) -> Result<(), StepError> {
+    let positive = |x: T| x.to_f64().is_finite() && x > T::zero();
+    if !positive(dt) {
+        Err(StepError::InvalidArgument {
+            what: "the step dt must be finite and positive",
+        })
+    } else if !positive(tolerance) {
+        Err(StepError::InvalidArgument {
+            what: "the tolerance must be finite and positive",
+        })
+    } else if max_iterations == 0 {
+        Err(StepError::InvalidArgument {
+            what: "max_iterations must be at least 1",
+        })
+    } else {
+        Ok(())
+    }
 }
 
 /// A x, for an `NV × NV` matrix stored by rows.
@@ -336,7 +380,9 @@ fn discrete_momenta<T: Scalar, M: Lagrangian<T>>(
 /// `tolerance · (1 + |v̄|)` (max norms: relative for fast motion, since the momentum
 /// residual carries rounding of the order ε cond(M) |v̄|), after at most `max_iterations`
 /// iterations ([`StepError::NotConverged`]), or at a non-finite value
-/// ([`StepError::NonFinite`]).
+/// ([`StepError::NonFinite`]). `dt` and `tolerance` must be finite and positive and
+/// `max_iterations` ≥ 1 ([`StepError::InvalidArgument`] otherwise: a zero tolerance would
+/// make the difference step zero).
 ///
 /// Joint coordinates only: a mechanism with a free joint (NQ ≠ NV, quaternion
 /// coordinates) is rejected with [`StepError::FreeJoint`].
@@ -347,6 +393,7 @@ pub fn variational_midpoint<T: Real, M: Lagrangian<T>>(
     tolerance: T,
     max_iterations: usize,
 ) -> Result<State<T, M>, StepError> {
+    check_arguments(dt, tolerance, max_iterations)?;
     if M::NQ != M::NV {
         return Err(StepError::FreeJoint);
     }
@@ -389,8 +436,11 @@ pub fn variational_midpoint<T: Real, M: Lagrangian<T>>(
         for (wk, &dk) in w.as_mut().iter_mut().zip(step.as_ref()) {
             *wk -= dk;
         }
-        let change = max_norm(step.as_ref());
-        if change <= tolerance * (T::one() + max_norm(w.as_ref())) {
+        let (change, size) = (max_norm(step.as_ref()), max_norm(w.as_ref()));
+        if !(change.to_f64().is_finite() && size.to_f64().is_finite()) {
+            return Err(StepError::NonFinite);
+        }
+        if change <= tolerance * (T::one() + size) {
             let (_, p1) = discrete_momenta(&s.q, &w, inputs, dt);
             let q1 = M::integrate(&s.q, &w, dt);
             let mut v1 = p1;
