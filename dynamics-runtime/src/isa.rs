@@ -1,7 +1,7 @@
 //! Which instruction set a generated kernel runs on, chosen at run time.
 //!
 //! Contract: each generated function (or each piece of a split one) is a straight-line
-//! kernel instantiated twice, `WIDE = true` and `WIDE = false`. [`run`] calls the wide copy,
+//! kernel instantiated twice, `WIDE = true` and `WIDE = false`. The runtime calls the wide copy,
 //! compiled here for AVX2 and FMA, when the CPU has both (std's `cpuid` detection, done
 //! once) and `DYNAMICS_ISA` is not `baseline`; otherwise it calls the baseline copy,
 //! compiled for whatever the crate targets (SSE2 on baseline x86-64). On other
