@@ -207,9 +207,17 @@ mod tests {
         assert!(!one.contains("kernel :: < T , true >"), "{one}");
     }
 
+    /// The generated code of a declaration, pretty-printed.
+    fn generated(tokens: TokenStream) -> String {
+        let mechanism: Mechanism = syn::parse2(tokens).expect("parses");
+        let compiled = compile(mechanism, Path::new(".")).expect("valid");
+        let file: syn::File = syn::parse2(to_tokens(&compiled)).expect("valid Rust");
+        prettyplease::unparse(&file)
+    }
+
     #[test]
     fn doc_comments_reach_the_generated_type() {
-        let mechanism: syntax::Mechanism = syn::parse2(quote! {
+        let text = generated(quote! {
             /// A test arm.
             pub struct Arm;
             /// The upper arm.
@@ -219,11 +227,7 @@ mod tests {
             /// The shoulder.
             joint shoulder: revolute(ground -> upper) { axis: z }
             joint weld: fixed(upper -> tool) { at: [0.4, 0.0, 0.0] }
-        })
-        .expect("parses");
-        let compiled = compile(mechanism, Path::new(".")).expect("valid");
-        let file: syn::File = syn::parse2(to_tokens(&compiled)).expect("valid Rust");
-        let text = prettyplease::unparse(&file);
+        });
         for expected in [
             "/// A test arm.",
             "| `shoulder` | `upper` (with `tool`) | revolute about [0, 0, 1] | q[0] | v[0] |",
@@ -238,7 +242,7 @@ mod tests {
     /// A load's doc comment, body, point and input layout reach the type's docs.
     #[test]
     fn loads_are_documented_with_their_inputs_and_frame() {
-        let mechanism: Mechanism = syn::parse2(quote! {
+        let text = generated(quote! {
             pub struct Arm;
             body upper { mass: 1.0, com: [0.2, 0.0, 0.0], shape: point }
             body tool { mass: 0.2, shape: point }
@@ -247,11 +251,7 @@ mod tests {
             /// A push at the tip.
             load push: force on tool at [0.1, 0.0, 0.0];
             load grip: wrench on upper;
-        })
-        .expect("parses");
-        let compiled = compile(mechanism, Path::new(".")).expect("valid");
-        let file: syn::File = syn::parse2(to_tokens(&compiled)).expect("valid Rust");
-        let text = prettyplease::unparse(&file);
+        });
         for expected in [
             "/// # Loads",
             "| `push` | `tool` | [0.1, 0, 0] | [0..3] = F |",
