@@ -14,6 +14,7 @@
 //! | `forward_dynamics(q, v, tau)` | q̈ = M⁻¹(τ + Q − C q̇ − g − b q̇) | [`aba`] or [`crba`] + [`ldlt`], whichever costs fewer operations |
 //! | `kinetic_energy(q, v)`, `potential_energy(q)` | T, V | [`energy`] |
 //! | `joint_reactions(q, v, a)` | [F; M_P] each joint transmits to its body | [`rnea`] |
+//! | `center_of_mass(q)`, `center_of_mass_jacobian(q)` | c, J_c in the world frame (asked for by name) | [`kinematics`] |
 //! | `force_analysis(q, v, a)` | every reaction component and driving effort, with the pivots of R | [`statics`] + [`qr`] |
 //! | `constraint_residual(q)`, `constraint_jacobian(q)`, `constraint_bias(q, v)` | φ, Φ_q, γ of the loop closures | [`statics`] |
 //!
@@ -29,7 +30,9 @@
 
 use crate::expand::geometry::BodyInertia;
 use crate::expand::rnea::{self, SweepInputs};
-use crate::expand::{aba, coriolis, crba, energy, fresh_graph, inputs, ldlt, qr, statics};
+use crate::expand::{
+    aba, coriolis, crba, energy, fresh_graph, inputs, kinematics, ldlt, qr, statics,
+};
 use crate::ir::{Arg, Function, FunctionSpec, Output};
 use crate::model::Model;
 use crate::passes::base_parameters;
@@ -138,6 +141,20 @@ pub(crate) const CATALOG: &[Entry] = &[
         arrays: &[Array::Q, Array::V, Array::A],
         loads: true,
         expand: joint_reactions,
+    },
+    Entry {
+        name: "center_of_mass",
+        wanted: |m| m.outputs.center_of_mass,
+        arrays: &[Array::Q],
+        loads: false,
+        expand: center_of_mass,
+    },
+    Entry {
+        name: "center_of_mass_jacobian",
+        wanted: |m| m.outputs.center_of_mass_jacobian && m.nv > 0,
+        arrays: &[Array::Q],
+        loads: false,
+        expand: center_of_mass_jacobian,
     },
     Entry {
         name: "force_analysis",
@@ -476,6 +493,31 @@ fn joint_reactions(model: &Model) -> Expanded {
         doc: "Joint reactions: for each body, the wrench [F; M_P] its joint transmits to it from \
               the parent (actuator component included), in the body frame about the joint \
               point P."
+            .to_owned(),
+    }
+}
+
+fn center_of_mass(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let c = kinematics::center_of_mass(&g, model, &t, &i);
+    Expanded {
+        graph: g,
+        output: Output::Vector(c.0.to_vec()),
+        doc: "Centre of mass c(q) = Σ m_i x_i / Σ m_i of every body, in the world frame \
+              (Pinocchio's `centerOfMass`)."
+            .to_owned(),
+    }
+}
+
+fn center_of_mass_jacobian(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let jacobian = kinematics::center_of_mass_jacobian(&g, model, &t, &i);
+    Expanded {
+        graph: g,
+        output: Output::Matrix(jacobian),
+        doc: "Jacobian of the centre of mass J_c(q), 3 × nv, in the world frame: ċ = J_c q̇ \
+              (Pinocchio's `jacobianCenterOfMass`; a free base's columns are its velocity \
+              [v_P; ω] in the base frame)."
             .to_owned(),
     }
 }

@@ -16,6 +16,7 @@
 //! | [`aba`] | the articulated-body algorithm |
 //! | [`ldlt`] | the tree-sparse LDLᵀ solve of M q̈ = τ − bias |
 //! | [`energy`] | kinetic and potential energy |
+//! | [`kinematics`] | body poses in the world, the centre of mass and its Jacobian |
 //! | [`statics`] | the balance equations of the force analysis and the loop closures |
 //! | [`qr`] | a Givens QR solve for the force analysis |
 
@@ -24,6 +25,7 @@ pub(crate) mod coriolis;
 pub(crate) mod crba;
 pub(crate) mod energy;
 pub(crate) mod geometry;
+pub(crate) mod kinematics;
 pub(crate) mod ldlt;
 pub(crate) mod qr;
 pub(crate) mod rnea;

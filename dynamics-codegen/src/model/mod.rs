@@ -55,13 +55,17 @@ pub struct Outputs {
     /// The loop-closure equations φ(q) = 0 of the declared constraints, their Jacobian Φ_q
     /// and the acceleration term γ with Φ_q q̈ = γ.
     pub constraints: bool,
+    /// The centre of mass in the world frame.
+    pub center_of_mass: bool,
+    /// Its Jacobian, 3 × nv.
+    pub center_of_mass_jacobian: bool,
 }
 
 impl Outputs {
     /// The output names the language accepts: the names of the functions they generate
     /// (`kinetic_energy` and `potential_energy` come together, as do the three constraint
     /// functions).
-    pub const NAMES: [&'static str; 15] = [
+    pub const NAMES: [&'static str; 17] = [
         "inverse_dynamics",
         "gravity",
         "bias",
@@ -77,6 +81,8 @@ impl Outputs {
         "constraint_residual",
         "constraint_jacobian",
         "constraint_bias",
+        "center_of_mass",
+        "center_of_mass_jacobian",
     ];
 
     /// Short names accepted too, each with the name it stands for.
@@ -87,7 +93,9 @@ impl Outputs {
         ("constraints", "constraint_residual"),
     ];
 
-    /// Every output.
+    /// The default: the dynamics, energies and joint reactions (the forward-dynamics
+    /// variants, the force analysis, the loop closures and the kinematics are asked for by
+    /// name).
     pub fn all() -> Self {
         Outputs {
             inverse_dynamics: true,
@@ -102,6 +110,8 @@ impl Outputs {
             reactions: true,
             force_analysis: false,
             constraints: false,
+            center_of_mass: false,
+            center_of_mass_jacobian: false,
         }
     }
 
@@ -139,6 +149,8 @@ impl Outputs {
             "kinetic_energy" | "potential_energy" => &mut self.energy,
             "joint_reactions" => &mut self.reactions,
             "force_analysis" => &mut self.force_analysis,
+            "center_of_mass" => &mut self.center_of_mass,
+            "center_of_mass_jacobian" => &mut self.center_of_mass_jacobian,
             "constraint_residual" | "constraint_jacobian" | "constraint_bias" => {
                 &mut self.constraints
             }

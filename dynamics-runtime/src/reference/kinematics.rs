@@ -137,4 +137,20 @@ impl<T: Scalar> Reference<'_, T> {
         self.update_placements(q);
         Ok(&self.poses)
     }
+
+    /// The centre of mass in the world frame at configuration q:
+    /// c = Σ m_i (p_i + R_i c_i) / Σ m_i over the bodies' poses (R_i, p_i) and mass centres
+    /// c_i (in their frames).
+    pub fn center_of_mass(&mut self, q: &[T]) -> Result<Vector3<T>, SizeError> {
+        self.check_q(q)?;
+        self.update_placements(q);
+        let mut first_moment = Vector3::zeros();
+        let mut total = T::zero();
+        for (body, pose) in self.bodies.iter().zip(&self.poses) {
+            let centre = pose.origin_in_world + pose.rotation_in_world * body.com_in_body;
+            first_moment += centre * body.mass;
+            total += body.mass;
+        }
+        Ok(first_moment / total)
+    }
 }

@@ -1,0 +1,154 @@
+//! Kinematics: every body's pose in the world, the centre of mass and its Jacobian.
+//!
+//! Forward kinematics composes the joint transforms from the root (R: body → world
+//! rotation, p: the body origin P in the world; E, r the joint transform of
+//! [`super::geometry`]):
+//!
+//! ```text
+//! R_i = R_λ E_i,    p_i = p_λ + R_λ r_i        (R = 1, p = 0 for the ground)
+//! ```
+//!
+//! The centre of mass, with h_i = m_i c_i the first moment of body i about P_i in its frame,
+//! is c = Σ (m_i p_i + R_i h_i) / M, M = Σ m_i. Its Jacobian J_c (3 × nv, ċ = J_c q̇)
+//! gathers, joint by joint, the motion of the subtree the joint moves: with M_j and
+//! S_j = Σ (m_i p_i + R_i h_i) the mass and the first moment about the world origin of the
+//! bodies at and below body j,
+//!
+//! ```text
+//! revolute about s (a = R_j s in the world):  J_c[:, j] = a × (S_j − M_j p_j) / M
+//! prismatic along s:                            J_c[:, j] = a M_j / M
+//! free, v = [v_P; ω] in the body frame:        J_c[:, j + k] = R_j e_k M_j / M,
+//!                                               J_c[:, j + 3 + k] = (R_j e_k) × (S_j − M_j p_j) / M
+//! ```
+//!
+//! (a point x moved by joint j at unit rate moves at a × (x − p_j), or a, or R_j e_k).
+//! The inertias are the declared ones: the centre of mass is not a function of the
+//! Lagrangian alone, so base parameters do not serve.
+
+use super::geometry::{BodyInertia, JointTransform};
+use crate::model::{JointKind, Model};
+use crate::sym::{Graph, Mat3, Node, Vec3};
+
+/// The pose of a body frame in the world.
+#[derive(Clone, Copy, Debug)]
+pub struct Pose {
+    /// R: rotation from body to world coordinates.
+    pub rotation_in_world: Mat3,
+    /// p: the body origin P in the world frame.
+    pub origin_in_world: Vec3,
+}
+
+/// The pose of every body in the world, parents first.
+pub fn body_poses(g: &Graph, model: &Model, transforms: &[JointTransform]) -> Vec<Pose> {
+    let mut poses: Vec<Pose> = Vec::with_capacity(model.bodies.len());
+    for (i, body) in model.bodies.iter().enumerate() {
+        let t = &transforms[i];
+        let pose = match body.parent {
+            None => Pose {
+                rotation_in_world: t.rotation_to_parent,
+                origin_in_world: t.origin_in_parent,
+            },
+            Some(p) => {
+                let parent = poses[p];
+                Pose {
+                    rotation_in_world: parent.rotation_in_world.mul(g, t.rotation_to_parent),
+                    origin_in_world: parent
+                        .origin_in_world
+                        .add(g, parent.rotation_in_world.mul_vec(g, t.origin_in_parent)),
+                }
+            }
+        };
+        poses.push(pose);
+    }
+    poses
+}
+
+/// m p + R h: a body's first moment about the world origin, in world coordinates.
+fn first_moment_in_world(g: &Graph, pose: &Pose, inertia: &BodyInertia) -> Vec3 {
+    pose.origin_in_world
+        .scale(g, inertia.mass)
+        .add(g, pose.rotation_in_world.mul_vec(g, inertia.first_moment))
+}
+
+/// 1 / M, the reciprocal of the total mass (a number when the masses are).
+fn reciprocal_total_mass(g: &Graph, inertias: &[BodyInertia]) -> Node {
+    let masses: Vec<Node> = inertias.iter().map(|b| b.mass).collect();
+    g.div(g.one(), g.sum(&masses))
+}
+
+/// The centre of mass c in the world frame.
+pub fn center_of_mass(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    inertias: &[BodyInertia],
+) -> Vec3 {
+    let poses = body_poses(g, model, transforms);
+    let moments: Vec<Vec3> = poses
+        .iter()
+        .zip(inertias)
+        .map(|(pose, inertia)| first_moment_in_world(g, pose, inertia))
+        .collect();
+    let total = (0..3).map(|k| g.sum(&moments.iter().map(|m| m.get(k)).collect::<Vec<_>>()));
+    let total: Vec<Node> = total.collect();
+    Vec3::new(total[0], total[1], total[2]).scale(g, reciprocal_total_mass(g, inertias))
+}
+
+/// J_c, 3 rows of nv entries: ċ = J_c q̇ in the world frame.
+pub fn center_of_mass_jacobian(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    inertias: &[BodyInertia],
+) -> Vec<Vec<Node>> {
+    let poses = body_poses(g, model, transforms);
+    let n = model.bodies.len();
+    // The subtrees' masses and first moments, from the leaves to the root.
+    let mut mass: Vec<Node> = inertias.iter().map(|b| b.mass).collect();
+    let mut moment: Vec<Vec3> = (0..n)
+        .map(|i| first_moment_in_world(g, &poses[i], &inertias[i]))
+        .collect();
+    for i in (0..n).rev() {
+        if let Some(p) = model.bodies[i].parent {
+            mass[p] = g.add(mass[p], mass[i]);
+            moment[p] = moment[p].add(g, moment[i]);
+        }
+    }
+    let inverse_total = reciprocal_total_mass(g, inertias);
+    let mut columns: Vec<Vec3> = vec![Vec3::zero(g); model.nv];
+    for (j, body) in model.bodies.iter().enumerate() {
+        let pose = &poses[j];
+        // S_j − M_j p_j: the subtree's first moment about the joint's origin.
+        let about_joint = moment[j].sub(g, pose.origin_in_world.scale(g, mass[j]));
+        let k = body.joint.idx_v;
+        match body.joint.kind {
+            JointKind::Revolute { axis_in_joint } => {
+                let axis = pose
+                    .rotation_in_world
+                    .mul_vec(g, Vec3::constant(g, axis_in_joint));
+                columns[k] = axis.cross(g, about_joint);
+            }
+            JointKind::Prismatic { axis_in_joint } => {
+                let axis = pose
+                    .rotation_in_world
+                    .mul_vec(g, Vec3::constant(g, axis_in_joint));
+                columns[k] = axis.scale(g, mass[j]);
+            }
+            JointKind::Free => {
+                for e in 0..3 {
+                    let axis = pose.rotation_in_world.col(e);
+                    columns[k + e] = axis.scale(g, mass[j]);
+                    columns[k + 3 + e] = axis.cross(g, about_joint);
+                }
+            }
+        }
+    }
+    (0..3)
+        .map(|row| {
+            columns
+                .iter()
+                .map(|c| g.mul(c.get(row), inverse_total))
+                .collect()
+        })
+        .collect()
+}
