@@ -15,6 +15,7 @@
 //! | `kinetic_energy(q, v)`, `potential_energy(q)` | T, V | [`energy`] |
 //! | `joint_reactions(q, v, a)` | [F; M_P] each joint transmits to its body | [`rnea`] |
 //! | `center_of_mass(q)`, `center_of_mass_jacobian(q)` | c, J_c in the world frame (asked for by name) | [`kinematics`] |
+//! | `joint_placements(q)`, `joint_jacobians(q)` | each body's (R, p) in the world and its 6 × nv Jacobian, world-aligned at its origin (asked for by name) | [`kinematics`] |
 //! | `force_analysis(q, v, a)` | every reaction component and driving effort, with the pivots of R | [`statics`] + [`qr`] |
 //! | `constraint_residual(q)`, `constraint_jacobian(q)`, `constraint_bias(q, v)` | φ, Φ_q, γ of the loop closures | [`statics`] |
 //!
@@ -155,6 +156,20 @@ pub(crate) const CATALOG: &[Entry] = &[
         arrays: &[Array::Q],
         loads: false,
         expand: center_of_mass_jacobian,
+    },
+    Entry {
+        name: "joint_placements",
+        wanted: |m| m.outputs.joint_placements && !m.bodies.is_empty(),
+        arrays: &[Array::Q],
+        loads: false,
+        expand: joint_placements,
+    },
+    Entry {
+        name: "joint_jacobians",
+        wanted: |m| m.outputs.joint_jacobians && m.nv > 0,
+        arrays: &[Array::Q],
+        loads: false,
+        expand: joint_jacobians,
     },
     Entry {
         name: "force_analysis",
@@ -518,6 +533,51 @@ fn center_of_mass_jacobian(model: &Model) -> Expanded {
         doc: "Jacobian of the centre of mass J_c(q), 3 × nv, in the world frame: ċ = J_c q̇ \
               (Pinocchio's `jacobianCenterOfMass`; a free base's columns are its velocity \
               [v_P; ω] in the base frame)."
+            .to_owned(),
+    }
+}
+
+fn joint_placements(model: &Model) -> Expanded {
+    let (g, t, _) = fresh_graph(model);
+    let poses = kinematics::body_poses(&g, model, &t);
+    let placements = poses
+        .iter()
+        .map(|pose| {
+            let rows = pose
+                .rotation_in_world
+                .0
+                .iter()
+                .map(|r| r.to_vec())
+                .collect();
+            Output::Tuple(vec![
+                Output::Matrix(rows),
+                Output::Vector(pose.origin_in_world.0.to_vec()),
+            ])
+        })
+        .collect();
+    Expanded {
+        graph: g,
+        output: Output::Stack(placements),
+        doc: "The pose of every body's frame (joint i's frame after its motion, indexed like \
+              `BODY_NAMES`) in the world: (R, p) with x_world = R x_body + p (Pinocchio's \
+              `oMi` after `forwardKinematics`)."
+            .to_owned(),
+    }
+}
+
+fn joint_jacobians(model: &Model) -> Expanded {
+    let (g, t, _) = fresh_graph(model);
+    let jacobians = kinematics::body_jacobians(&g, model, &t)
+        .into_iter()
+        .map(Output::Matrix)
+        .collect();
+    Expanded {
+        graph: g,
+        output: Output::Stack(jacobians),
+        doc: "The Jacobian of every body's frame (indexed like `BODY_NAMES`), 6 × nv, rows \
+              [linear; angular], at the frame's origin with the world's axes: \
+              [v_P; ω] in world coordinates = J q̇ (Pinocchio's `getJointJacobian` in \
+              `LOCAL_WORLD_ALIGNED`). Columns of joints that do not move the body are zero."
             .to_owned(),
     }
 }

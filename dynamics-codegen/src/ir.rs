@@ -48,6 +48,9 @@ pub(crate) enum Output {
     Matrix(Vec<Vec<Node>>),
     /// A tuple of outputs, e.g. `([[T; 7]; 7], [T; 7])`.
     Tuple(Vec<Output>),
+    /// An array of outputs of one shape, e.g. one 6 × nv Jacobian per body:
+    /// `[[[T; 7]; 6]; 7]`.
+    Stack(Vec<Output>),
 }
 
 impl Output {
@@ -68,6 +71,7 @@ impl Output {
             Output::Vector(v) => Output::Vector(row(v)),
             Output::Matrix(rows) => Output::Matrix(rows.iter().map(|r| row(r)).collect()),
             Output::Tuple(items) => Output::Tuple(items.iter().map(|o| o.map(f)).collect()),
+            Output::Stack(items) => Output::Stack(items.iter().map(|o| o.map(f)).collect()),
         }
     }
 
@@ -76,7 +80,9 @@ impl Output {
             Output::Scalar(n) => nodes.push(*n),
             Output::Vector(v) => nodes.extend(v),
             Output::Matrix(rows) => rows.iter().for_each(|r| nodes.extend(r)),
-            Output::Tuple(items) => items.iter().for_each(|o| o.collect_nodes(nodes)),
+            Output::Tuple(items) | Output::Stack(items) => {
+                items.iter().for_each(|o| o.collect_nodes(nodes));
+            }
         }
     }
 }

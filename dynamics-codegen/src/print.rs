@@ -104,6 +104,15 @@ impl Output {
                 let tys = items.iter().map(Output::ty);
                 quote!((#(#tys,)*))
             }
+            Output::Stack(items) => {
+                let n = Literal::usize_unsuffixed(items.len());
+                let item = items.first().map_or_else(|| quote!(T), Output::ty);
+                assert!(
+                    items.iter().all(|i| i.ty().to_string() == item.to_string()),
+                    "stacked outputs differ in shape"
+                );
+                quote!([#item; #n])
+            }
         }
     }
 
@@ -128,6 +137,10 @@ impl Output {
             Output::Tuple(items) => {
                 let exprs = items.iter().map(Output::expr);
                 quote!((#(#exprs,)*))
+            }
+            Output::Stack(items) => {
+                let exprs = items.iter().map(Output::expr);
+                quote!([#(#exprs),*])
             }
         }
     }
@@ -499,7 +512,7 @@ pub(crate) fn nalgebra_wrapper(spec: &FunctionSpec, nalgebra: &TokenStream) -> T
                 quote!(#nalgebra::SMatrix::<T, #c, #r>::from_array_storage(#nalgebra::ArrayStorage(#call)).transpose()),
             )
         }
-        Output::Tuple(_) => return TokenStream::new(),
+        Output::Tuple(_) | Output::Stack(_) => return TokenStream::new(),
     };
     let doc = format!(" [`Self::{name}`] with nalgebra vectors and matrices.");
     quote! {
@@ -748,6 +761,13 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
                 Output::Scalar(y),
             ]),
             Output::Tuple(vec![Output::Scalar(xy)]),
+            Output::Stack(vec![
+                Output::Tuple(vec![
+                    Output::Matrix(vec![vec![xy]]),
+                    Output::Vector(vec![x]),
+                ]),
+                Output::Tuple(vec![Output::Matrix(vec![vec![y]]), Output::Vector(vec![f])]),
+            ]),
         ];
         for output in shapes {
             let s = spec(
@@ -770,6 +790,15 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
             Output::Tuple(vec![Output::Scalar(x)]),
         );
         assert!(pretty(emit_function(&g, &t)).contains("-> (T,)"));
+        let stack = spec(
+            "s",
+            &[(Array::Q, 1), (Array::P, 3)],
+            Output::Stack(vec![
+                Output::Matrix(vec![vec![xy, x]]),
+                Output::Matrix(vec![vec![y, x]]),
+            ]),
+        );
+        assert!(pretty(emit_function(&g, &stack)).contains("-> [[[T; 2]; 1]; 2]"));
     }
 
     #[test]

@@ -24,6 +24,17 @@
 //! (a point x moved by joint j at unit rate moves at a × (x − p_j), or a, or R_j e_k).
 //! The inertias are the declared ones: the centre of mass is not a function of the
 //! Lagrangian alone, so base parameters do not serve.
+//!
+//! The Jacobian of body i's frame, 6 × nv, rows [linear; angular], with the origin at P_i
+//! and the world's axes (Pinocchio's `LOCAL_WORLD_ALIGNED`): [v_P; ω] in world coordinates
+//! is J_i q̇. Its column for a joint j on the path from the root to i is
+//!
+//! ```text
+//! revolute:   [a × (p_i − p_j); a]        prismatic: [a; 0]
+//! free:       [R_j e_k; 0] (k = 0, 1, 2),  [(R_j e_k) × (p_i − p_j); R_j e_k]
+//! ```
+//!
+//! and zero for any other joint (it does not move body i).
 
 use super::geometry::{BodyInertia, JointTransform};
 use crate::model::{JointKind, Model};
@@ -149,6 +160,59 @@ pub fn center_of_mass_jacobian(
                 .iter()
                 .map(|c| g.mul(c.get(row), inverse_total))
                 .collect()
+        })
+        .collect()
+}
+
+/// The Jacobian of every body's frame in the world-aligned frame at its origin: for body
+/// i, 6 rows [linear; angular] of nv entries.
+pub fn body_jacobians(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+) -> Vec<Vec<Vec<Node>>> {
+    let poses = body_poses(g, model, transforms);
+    let zero = g.zero();
+    (0..model.bodies.len())
+        .map(|i| {
+            let mut rows = vec![vec![zero; model.nv]; 6];
+            let mut set = |col: usize, linear: Vec3, angular: Vec3| {
+                for k in 0..3 {
+                    rows[k][col] = linear.get(k);
+                    rows[3 + k][col] = angular.get(k);
+                }
+            };
+            let target = poses[i].origin_in_world;
+            let mut on_path = Some(i);
+            while let Some(j) = on_path {
+                let joint = &model.bodies[j].joint;
+                let pose = &poses[j];
+                let lever = target.sub(g, pose.origin_in_world);
+                let k = joint.idx_v;
+                match joint.kind {
+                    JointKind::Revolute { axis_in_joint } => {
+                        let axis = pose
+                            .rotation_in_world
+                            .mul_vec(g, Vec3::constant(g, axis_in_joint));
+                        set(k, axis.cross(g, lever), axis);
+                    }
+                    JointKind::Prismatic { axis_in_joint } => {
+                        let axis = pose
+                            .rotation_in_world
+                            .mul_vec(g, Vec3::constant(g, axis_in_joint));
+                        set(k, axis, Vec3::zero(g));
+                    }
+                    JointKind::Free => {
+                        for e in 0..3 {
+                            let axis = pose.rotation_in_world.col(e);
+                            set(k + e, axis, Vec3::zero(g));
+                            set(k + 3 + e, axis.cross(g, lever), axis);
+                        }
+                    }
+                }
+                on_path = model.bodies[j].parent;
+            }
+            rows
         })
         .collect()
 }

@@ -59,13 +59,17 @@ pub struct Outputs {
     pub center_of_mass: bool,
     /// Its Jacobian, 3 × nv.
     pub center_of_mass_jacobian: bool,
+    /// Every body frame's pose in the world.
+    pub joint_placements: bool,
+    /// Every body frame's Jacobian, world-aligned at its origin.
+    pub joint_jacobians: bool,
 }
 
 impl Outputs {
     /// The output names the language accepts: the names of the functions they generate
     /// (`kinetic_energy` and `potential_energy` come together, as do the three constraint
     /// functions).
-    pub const NAMES: [&'static str; 17] = [
+    pub const NAMES: [&'static str; 19] = [
         "inverse_dynamics",
         "gravity",
         "bias",
@@ -83,6 +87,8 @@ impl Outputs {
         "constraint_bias",
         "center_of_mass",
         "center_of_mass_jacobian",
+        "joint_placements",
+        "joint_jacobians",
     ];
 
     /// Short names accepted too, each with the name it stands for.
@@ -112,6 +118,8 @@ impl Outputs {
             constraints: false,
             center_of_mass: false,
             center_of_mass_jacobian: false,
+            joint_placements: false,
+            joint_jacobians: false,
         }
     }
 
@@ -151,6 +159,8 @@ impl Outputs {
             "force_analysis" => &mut self.force_analysis,
             "center_of_mass" => &mut self.center_of_mass,
             "center_of_mass_jacobian" => &mut self.center_of_mass_jacobian,
+            "joint_placements" => &mut self.joint_placements,
+            "joint_jacobians" => &mut self.joint_jacobians,
             "constraint_residual" | "constraint_jacobian" | "constraint_bias" => {
                 &mut self.constraints
             }

@@ -1,0 +1,353 @@
+//! The generated kinematics: body placements, body Jacobians, the centre of mass and its
+//! Jacobian:
+//! - against Pinocchio's `forwardKinematics` (oMi), `getJointJacobian(LOCAL_WORLD_ALIGNED)`,
+//!   `centerOfMass` and `jacobianCenterOfMass` for the five anchor robots, imported from the
+//!   same URDF files, at Pinocchio's 20 sampled configurations each
+//!   (`tests/data/pinocchio_ext/<name>_kinematics.json`), to 1e-12;
+//! - on a free-floating branched tree with a prismatic joint: placements and centre of mass
+//!   against the runtime reference (body poses and mass centres, written independently),
+//!   and both Jacobians against central finite differences of the generated placements and
+//!   centre of mass along q ⊕ δ (the free base moved on its manifold by
+//!   `integrate_configuration`).
+
+use dynamics_runtime::{integrate_configuration, mechanism, Mechanism, Reference};
+use serde::Deserialize;
+
+mechanism! {
+    pub struct PendulumKinematics;
+    urdf: "../models/urdf/pendulum.urdf";
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians];
+}
+
+mechanism! {
+    pub struct DoublePendulumKinematics;
+    urdf: "../models/urdf/double_pendulum.urdf";
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians];
+}
+
+mechanism! {
+    pub struct Planar3Kinematics;
+    urdf: "../models/urdf/planar3.urdf";
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians];
+    allow: [triangle_inequality];
+}
+
+mechanism! {
+    pub struct Ur5Kinematics;
+    urdf: "../models/urdf/ur5.urdf";
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians];
+}
+
+mechanism! {
+    pub struct PandaKinematics;
+    urdf: "../models/urdf/panda.urdf";
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians];
+}
+
+mechanism! {
+    /// A free-floating base with two branches, one ending in a slider; offset mass centres
+    /// and a rotated placement, so that no term vanishes by symmetry.
+    pub struct FreeTreeKinematics;
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians];
+    body base { mass: 3.0, com: [0.01, 0.02, -0.03], inertia: [[0.1, 0.01, 0.0], [0.01, 0.12, 0.02], [0.0, 0.02, 0.09]] }
+    body left { mass: 1.0, com: [0.1, 0.0, 0.0], shape: rod(length: 0.2, axis: x) }
+    body right { mass: 0.7, com: [0.0, 0.05, 0.01], shape: box(size: [0.05, 0.1, 0.02]) }
+    body slider { mass: 0.4, com: [0.02, 0.0, 0.01], shape: sphere(radius: 0.03) }
+    joint float: free(ground -> base);
+    joint hip_left: revolute(base -> left) { axis: [0.3, 0.2, 1.0], at: [0.1, 0.1, 0.0], rotation: rpy(0.1, 0.2, 0.3) }
+    joint hip_right: revolute(base -> right) { axis: y, at: [0.1, -0.1, 0.0] }
+    joint slide: prismatic(left -> slider) { axis: x, at: [0.2, 0.0, 0.0] }
+}
+
+#[derive(Deserialize)]
+struct Placement {
+    rotation: [[f64; 3]; 3],
+    translation: [f64; 3],
+}
+
+#[derive(Deserialize)]
+struct Sample {
+    q: Vec<f64>,
+    center_of_mass: [f64; 3],
+    com_jacobian: Vec<Vec<f64>>,
+    joint_placements: Vec<Placement>,
+    joint_jacobians_world: Vec<Vec<Vec<f64>>>,
+}
+
+#[derive(Deserialize)]
+struct Samples {
+    samples: Vec<Sample>,
+}
+
+fn samples(name: &str) -> Vec<Sample> {
+    let path = format!(
+        "{}/data/pinocchio_ext/{name}_kinematics.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let file: Samples = serde_json::from_str(&text).unwrap_or_else(|e| panic!("{path}: {e}"));
+    assert_eq!(file.samples.len(), 20, "{path}");
+    file.samples
+}
+
+/// `|a − b| ≤ 1e-12` entry by entry, with a message naming what differs.
+fn assert_close(a: f64, b: f64, what: &dyn Fn() -> String) {
+    assert!((a - b).abs() <= 1e-12, "{}: {a} against {b}", what());
+}
+
+type Placements<const NB: usize> = [([[f64; 3]; 3], [f64; 3]); NB];
+
+/// Compares one robot's generated kinematics with Pinocchio's values.
+fn check_kinematics<const NQ: usize, const NV: usize, const NB: usize>(
+    name: &str,
+    placements: fn(&[f64; NQ]) -> Placements<NB>,
+    jacobians: fn(&[f64; NQ]) -> [[[f64; NV]; 6]; NB],
+) {
+    for (k, sample) in samples(name).iter().enumerate() {
+        let q: [f64; NQ] = sample.q.clone().try_into().expect("nq matches");
+        assert_eq!(
+            sample.joint_placements.len(),
+            NB,
+            "{name}: one body per joint"
+        );
+        let (poses, jacobian) = (placements(&q), jacobians(&q));
+        for (b, expected) in sample.joint_placements.iter().enumerate() {
+            for r in 0..3 {
+                assert_close(poses[b].1[r], expected.translation[r], &|| {
+                    format!("{name} sample {k} body {b} p[{r}]")
+                });
+                for c in 0..3 {
+                    assert_close(poses[b].0[r][c], expected.rotation[r][c], &|| {
+                        format!("{name} sample {k} body {b} R[{r}][{c}]")
+                    });
+                }
+            }
+            for r in 0..6 {
+                for c in 0..NV {
+                    assert_close(
+                        jacobian[b][r][c],
+                        sample.joint_jacobians_world[b][r][c],
+                        &|| format!("{name} sample {k} body {b} J[{r}][{c}]"),
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Compares one robot's generated centre of mass and its Jacobian with Pinocchio's values.
+fn check_against_pinocchio<const NQ: usize, const NV: usize>(
+    name: &str,
+    com: fn(&[f64; NQ]) -> [f64; 3],
+    jacobian: fn(&[f64; NQ]) -> [[f64; NV]; 3],
+) {
+    for (k, sample) in samples(name).iter().enumerate() {
+        let q: [f64; NQ] = sample.q.clone().try_into().expect("nq matches");
+        let c = com(&q);
+        for row in 0..3 {
+            let error = (c[row] - sample.center_of_mass[row]).abs();
+            assert!(
+                error <= 1e-12,
+                "{name} sample {k}: c = {c:?}, Pinocchio {:?}",
+                sample.center_of_mass
+            );
+        }
+        let j = jacobian(&q);
+        for row in 0..3 {
+            for col in 0..NV {
+                let error = (j[row][col] - sample.com_jacobian[row][col]).abs();
+                assert!(
+                    error <= 1e-12,
+                    "{name} sample {k}: J_c[{row}][{col}] = {}, Pinocchio {}",
+                    j[row][col],
+                    sample.com_jacobian[row][col]
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn centre_of_mass_and_its_jacobian_match_pinocchio() {
+    check_against_pinocchio(
+        "pendulum",
+        PendulumKinematics::center_of_mass::<f64>,
+        PendulumKinematics::center_of_mass_jacobian::<f64>,
+    );
+    check_against_pinocchio(
+        "double_pendulum",
+        DoublePendulumKinematics::center_of_mass::<f64>,
+        DoublePendulumKinematics::center_of_mass_jacobian::<f64>,
+    );
+    check_against_pinocchio(
+        "planar3",
+        Planar3Kinematics::center_of_mass::<f64>,
+        Planar3Kinematics::center_of_mass_jacobian::<f64>,
+    );
+    check_against_pinocchio(
+        "ur5",
+        Ur5Kinematics::center_of_mass::<f64>,
+        Ur5Kinematics::center_of_mass_jacobian::<f64>,
+    );
+    check_against_pinocchio(
+        "panda",
+        PandaKinematics::center_of_mass::<f64>,
+        PandaKinematics::center_of_mass_jacobian::<f64>,
+    );
+}
+
+#[test]
+fn placements_and_joint_jacobians_match_pinocchio() {
+    check_kinematics(
+        "pendulum",
+        PendulumKinematics::joint_placements::<f64>,
+        PendulumKinematics::joint_jacobians::<f64>,
+    );
+    check_kinematics(
+        "double_pendulum",
+        DoublePendulumKinematics::joint_placements::<f64>,
+        DoublePendulumKinematics::joint_jacobians::<f64>,
+    );
+    check_kinematics(
+        "planar3",
+        Planar3Kinematics::joint_placements::<f64>,
+        Planar3Kinematics::joint_jacobians::<f64>,
+    );
+    check_kinematics(
+        "ur5",
+        Ur5Kinematics::joint_placements::<f64>,
+        Ur5Kinematics::joint_jacobians::<f64>,
+    );
+    check_kinematics(
+        "panda",
+        PandaKinematics::joint_placements::<f64>,
+        PandaKinematics::joint_jacobians::<f64>,
+    );
+}
+
+/// A configuration of the free tree: position, a unit quaternion, three joint values.
+fn free_tree_configuration(k: usize) -> [f64; 10] {
+    let s = k as f64;
+    let quaternion = [0.1 + 0.05 * s, -0.2, 0.3, 0.9 - 0.1 * s];
+    let norm = quaternion.iter().map(|x| x * x).sum::<f64>().sqrt();
+    [
+        0.3 - 0.1 * s,
+        0.2 * s,
+        1.0,
+        quaternion[0] / norm,
+        quaternion[1] / norm,
+        quaternion[2] / norm,
+        quaternion[3] / norm,
+        (0.7 + s).sin(),
+        (0.3 * s).cos(),
+        0.05 * s,
+    ]
+}
+
+#[test]
+fn centre_of_mass_of_a_free_tree_matches_the_reference() {
+    let model = <FreeTreeKinematics as Mechanism>::model();
+    let mut reference = Reference::<f64>::new(&model);
+    for k in 0..6 {
+        let q = free_tree_configuration(k);
+        let generated = FreeTreeKinematics::center_of_mass(&q);
+        let expected = reference.center_of_mass(&q).expect("sizes match");
+        for row in 0..3 {
+            assert!(
+                (generated[row] - expected[row]).abs() <= 1e-13,
+                "q = {q:?}: generated {generated:?}, reference {expected:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn placements_of_a_free_tree_match_the_reference() {
+    let model = <FreeTreeKinematics as Mechanism>::model();
+    let mut reference = Reference::<f64>::new(&model);
+    for k in 0..6 {
+        let q = free_tree_configuration(k);
+        let generated = FreeTreeKinematics::joint_placements(&q);
+        let expected = reference.body_poses(&q).expect("sizes match");
+        for (b, (rotation, origin)) in generated.iter().enumerate() {
+            for r in 0..3 {
+                let e = expected[b].origin_in_world[r];
+                assert!(
+                    (origin[r] - e).abs() <= 1e-13,
+                    "body {b} p[{r}] {}, {e}",
+                    origin[r]
+                );
+                for c in 0..3 {
+                    let e = expected[b].rotation_in_world[(r, c)];
+                    let g = rotation[r][c];
+                    assert!((g - e).abs() <= 1e-13, "body {b} R[{r}][{c}] {g}, {e}");
+                }
+            }
+        }
+    }
+}
+
+/// q ⊕ (s h e_col) for the free tree: the free base moves on its manifold.
+fn moved(q: &[f64; 10], col: usize, step: f64) -> [f64; 10] {
+    let mut v = [0.0; 9];
+    v[col] = 1.0;
+    let mut out = [0.0; 10];
+    integrate_configuration(q, &v, step, &[(0, 0)], &mut out);
+    out
+}
+
+#[test]
+fn joint_jacobians_of_a_free_tree_are_the_derivatives_of_the_placements() {
+    let h = 1e-6;
+    for k in 0..6 {
+        let q = free_tree_configuration(k);
+        let jacobians = FreeTreeKinematics::joint_jacobians(&q);
+        let here = FreeTreeKinematics::joint_placements(&q);
+        for col in 0..9 {
+            let plus = FreeTreeKinematics::joint_placements(&moved(&q, col, h));
+            let minus = FreeTreeKinematics::joint_placements(&moved(&q, col, -h));
+            for b in 0..4 {
+                // Linear rows: dp/dt. Angular rows: ω with Ṙ Rᵀ = ω̂.
+                let rate = |r: usize, c: usize| (plus[b].0[r][c] - minus[b].0[r][c]) / (2.0 * h);
+                let spin =
+                    |r: usize, c: usize| (0..3).map(|m| rate(r, m) * here[b].0[c][m]).sum::<f64>();
+                let omega = [spin(2, 1), spin(0, 2), spin(1, 0)];
+                for r in 0..3 {
+                    let velocity = (plus[b].1[r] - minus[b].1[r]) / (2.0 * h);
+                    let (lin, ang) = (jacobians[b][r][col], jacobians[b][3 + r][col]);
+                    assert!(
+                        (lin - velocity).abs() <= 1e-8,
+                        "q {q:?} body {b} J[{r}][{col}] {lin}, {velocity}"
+                    );
+                    assert!(
+                        (ang - omega[r]).abs() <= 1e-8,
+                        "q {q:?} body {b} J[{}][{col}] {ang}, {}",
+                        3 + r,
+                        omega[r]
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn centre_of_mass_jacobian_of_a_free_tree_is_the_derivative() {
+    let h = 1e-6;
+    for k in 0..6 {
+        let q = free_tree_configuration(k);
+        let jacobian = FreeTreeKinematics::center_of_mass_jacobian(&q);
+        for col in 0..9 {
+            let plus = FreeTreeKinematics::center_of_mass(&moved(&q, col, h));
+            let minus = FreeTreeKinematics::center_of_mass(&moved(&q, col, -h));
+            for row in 0..3 {
+                let difference = (plus[row] - minus[row]) / (2.0 * h);
+                assert!(
+                    (jacobian[row][col] - difference).abs() <= 1e-8,
+                    "q = {q:?}: J_c[{row}][{col}] = {}, central difference {difference}",
+                    jacobian[row][col]
+                );
+            }
+        }
+    }
+}
