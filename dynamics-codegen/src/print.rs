@@ -792,7 +792,7 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
         assert!(pretty(emit_function(&g, &t)).contains("-> (T,)"));
         let stack = spec(
             "s",
-            &[(Array::Q, 1), (Array::P, 3)],
+            &[(Array::Q, 1), (Array::P, 3), (Array::Loads, 6)],
             Output::Stack(vec![
                 Output::Matrix(vec![vec![xy, x]]),
                 Output::Matrix(vec![vec![y, x]]),
