@@ -1,14 +1,14 @@
 //! The generated kinematics: body placements, body Jacobians, the centre of mass and its
-//! Jacobian:
+//! Jacobian, the centroidal momentum matrix:
 //! - against Pinocchio's `forwardKinematics` (oMi), `getJointJacobian(LOCAL_WORLD_ALIGNED)`,
-//!   `centerOfMass` and `jacobianCenterOfMass` for the five anchor robots, imported from the
+//!   `centerOfMass`, `jacobianCenterOfMass` and `ccrba` for the five anchor robots, imported from the
 //!   same URDF files, at Pinocchio's 20 sampled configurations each
 //!   (`tests/data/pinocchio_ext/<name>_kinematics.json`), to 1e-12;
 //! - on a free-floating branched tree with a prismatic joint: placements and centre of mass
 //!   against the runtime reference (body poses and mass centres, written independently),
 //!   and both Jacobians against central finite differences of the generated placements and
 //!   centre of mass along q ⊕ δ (the free base moved on its manifold by
-//!   `integrate_configuration`).
+//!   `integrate_configuration`), and A_G q̇ against the bodies' momentum summed from those.
 
 use dynamics_runtime::{integrate_configuration, mechanism, Mechanism, Reference};
 use serde::Deserialize;
@@ -16,39 +16,39 @@ use serde::Deserialize;
 mechanism! {
     pub struct PendulumKinematics;
     urdf: "../models/urdf/pendulum.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix];
 }
 
 mechanism! {
     pub struct DoublePendulumKinematics;
     urdf: "../models/urdf/double_pendulum.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix];
 }
 
 mechanism! {
     pub struct Planar3Kinematics;
     urdf: "../models/urdf/planar3.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix];
     allow: [triangle_inequality];
 }
 
 mechanism! {
     pub struct Ur5Kinematics;
     urdf: "../models/urdf/ur5.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix];
 }
 
 mechanism! {
     pub struct PandaKinematics;
     urdf: "../models/urdf/panda.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix];
 }
 
 mechanism! {
     /// A free-floating base with two branches, one ending in a slider; offset mass centres
     /// and a rotated placement, so that no term vanishes by symmetry.
     pub struct FreeTreeKinematics;
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix];
     body base { mass: 3.0, com: [0.01, 0.02, -0.03], inertia: [[0.1, 0.01, 0.0], [0.01, 0.12, 0.02], [0.0, 0.02, 0.09]] }
     body left { mass: 1.0, com: [0.1, 0.0, 0.0], shape: rod(length: 0.2, axis: x) }
     body right { mass: 0.7, com: [0.0, 0.05, 0.01], shape: box(size: [0.05, 0.1, 0.02]) }
@@ -72,6 +72,7 @@ struct Sample {
     com_jacobian: Vec<Vec<f64>>,
     joint_placements: Vec<Placement>,
     joint_jacobians_world: Vec<Vec<Vec<f64>>>,
+    centroidal_momentum_matrix: Vec<Vec<f64>>,
 }
 
 #[derive(Deserialize)]
@@ -130,6 +131,24 @@ fn check_kinematics<const NQ: usize, const NV: usize, const NB: usize>(
                         &|| format!("{name} sample {k} body {b} J[{r}][{c}]"),
                     );
                 }
+            }
+        }
+    }
+}
+
+/// Compares one robot's generated centroidal momentum matrix with Pinocchio's.
+fn check_centroidal<const NQ: usize, const NV: usize>(
+    name: &str,
+    matrix: fn(&[f64; NQ]) -> [[f64; NV]; 6],
+) {
+    for (k, sample) in samples(name).iter().enumerate() {
+        let q: [f64; NQ] = sample.q.clone().try_into().expect("nq matches");
+        let a = matrix(&q);
+        for r in 0..6 {
+            for c in 0..NV {
+                assert_close(a[r][c], sample.centroidal_momentum_matrix[r][c], &|| {
+                    format!("{name} sample {k} A_G[{r}][{c}]")
+                });
             }
         }
     }
@@ -223,6 +242,24 @@ fn placements_and_joint_jacobians_match_pinocchio() {
         PandaKinematics::joint_placements::<f64>,
         PandaKinematics::joint_jacobians::<f64>,
     );
+}
+
+#[test]
+fn centroidal_momentum_matrix_matches_pinocchio() {
+    check_centroidal(
+        "pendulum",
+        PendulumKinematics::centroidal_momentum_matrix::<f64>,
+    );
+    check_centroidal(
+        "double_pendulum",
+        DoublePendulumKinematics::centroidal_momentum_matrix::<f64>,
+    );
+    check_centroidal(
+        "planar3",
+        Planar3Kinematics::centroidal_momentum_matrix::<f64>,
+    );
+    check_centroidal("ur5", Ur5Kinematics::centroidal_momentum_matrix::<f64>);
+    check_centroidal("panda", PandaKinematics::centroidal_momentum_matrix::<f64>);
 }
 
 /// A configuration of the free tree: position, a unit quaternion, three joint values.
@@ -348,6 +385,62 @@ fn centre_of_mass_jacobian_of_a_free_tree_is_the_derivative() {
                     jacobian[row][col]
                 );
             }
+        }
+    }
+}
+
+/// A_G q̇ of the free tree is the momentum of its bodies, summed in the test from the
+/// generated placements and Jacobians and the runtime model's inertias:
+/// l = Σ m v_G, k = Σ (x_G − c) × m v_G + R I_G Rᵀ ω.
+#[test]
+fn centroidal_momentum_of_a_free_tree_is_the_bodies_momentum() {
+    let model = <FreeTreeKinematics as Mechanism>::model();
+    for k in 0..6 {
+        let q = free_tree_configuration(k);
+        let v: [f64; 9] = std::array::from_fn(|i| (0.4 * i as f64 + 0.3 * k as f64).sin());
+        let a = FreeTreeKinematics::centroidal_momentum_matrix(&q);
+        let generated: Vec<f64> = (0..6)
+            .map(|r| (0..9).map(|c| a[r][c] * v[c]).sum())
+            .collect();
+        let placements = FreeTreeKinematics::joint_placements(&q);
+        let jacobians = FreeTreeKinematics::joint_jacobians(&q);
+        let centre = FreeTreeKinematics::center_of_mass(&q);
+        let (mut linear, mut angular) = ([0.0; 3], [0.0; 3]);
+        for (b, body) in model.bodies().iter().enumerate() {
+            let rotation = nalgebra::Matrix3::from_fn(|r, c| placements[b].0[r][c]);
+            let origin = nalgebra::Vector3::from(placements[b].1);
+            let twist: Vec<f64> = (0..6)
+                .map(|r| (0..9).map(|c| jacobians[b][r][c] * v[c]).sum())
+                .collect();
+            let (v_origin, omega) = (
+                nalgebra::Vector3::new(twist[0], twist[1], twist[2]),
+                nalgebra::Vector3::new(twist[3], twist[4], twist[5]),
+            );
+            let inertia = &body.inertia;
+            let offset = rotation * inertia.com_in_body;
+            let v_centre = v_origin + omega.cross(&offset);
+            let momentum = v_centre * inertia.mass;
+            let lever = origin + offset - nalgebra::Vector3::from(centre);
+            let spin = rotation * inertia.inertia_com_in_body * rotation.transpose() * omega;
+            let k_body = lever.cross(&momentum) + spin;
+            for r in 0..3 {
+                linear[r] += momentum[r];
+                angular[r] += k_body[r];
+            }
+        }
+        for r in 0..3 {
+            assert!(
+                (generated[r] - linear[r]).abs() <= 1e-12,
+                "l[{r}]: {} against {}",
+                generated[r],
+                linear[r]
+            );
+            assert!(
+                (generated[3 + r] - angular[r]).abs() <= 1e-12,
+                "k[{r}]: {} against {}",
+                generated[3 + r],
+                angular[r]
+            );
         }
     }
 }

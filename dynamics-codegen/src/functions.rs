@@ -15,6 +15,7 @@
 //! | `kinetic_energy(q, v)`, `potential_energy(q)` | T, V | [`energy`] |
 //! | `joint_reactions(q, v, a)` | [F; M_P] each joint transmits to its body | [`rnea`] |
 //! | `center_of_mass(q)`, `center_of_mass_jacobian(q)` | c, J_c in the world frame (asked for by name) | [`kinematics`] |
+//! | `centroidal_momentum_matrix(q)` | A_G: momentum and angular momentum about the centre of mass (asked for by name) | [`kinematics`] |
 //! | `joint_placements(q)`, `joint_jacobians(q)` | each body's (R, p) in the world and its 6 × nv Jacobian, world-aligned at its origin (asked for by name) | [`kinematics`] |
 //! | `force_analysis(q, v, a)` | every reaction component and driving effort, with the pivots of R | [`statics`] + [`qr`] |
 //! | `constraint_residual(q)`, `constraint_jacobian(q)`, `constraint_bias(q, v)` | φ, Φ_q, γ of the loop closures | [`statics`] |
@@ -170,6 +171,13 @@ pub(crate) const CATALOG: &[Entry] = &[
         arrays: &[Array::Q],
         loads: false,
         expand: joint_jacobians,
+    },
+    Entry {
+        name: "centroidal_momentum_matrix",
+        wanted: |m| m.outputs.centroidal_momentum_matrix && m.nv > 0,
+        arrays: &[Array::Q],
+        loads: false,
+        expand: centroidal_momentum_matrix,
     },
     Entry {
         name: "force_analysis",
@@ -578,6 +586,19 @@ fn joint_jacobians(model: &Model) -> Expanded {
               [linear; angular], at the frame's origin with the world's axes: \
               [v_P; ω] in world coordinates = J q̇ (Pinocchio's `getJointJacobian` in \
               `LOCAL_WORLD_ALIGNED`). Columns of joints that do not move the body are zero."
+            .to_owned(),
+    }
+}
+
+fn centroidal_momentum_matrix(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let a = kinematics::centroidal_momentum_matrix(&g, model, &t, &i);
+    Expanded {
+        graph: g,
+        output: Output::Matrix(a),
+        doc: "Centroidal momentum matrix A_G(q), 6 × nv, rows [linear; angular]: A_G q̇ is the \
+              linear momentum and the angular momentum about the centre of mass, in world \
+              axes (Pinocchio's `ccrba`)."
             .to_owned(),
     }
 }

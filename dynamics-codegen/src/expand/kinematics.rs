@@ -35,8 +35,22 @@
 //! ```
 //!
 //! and zero for any other joint (it does not move body i).
+//!
+//! The centroidal momentum matrix A_G (6 × nv, rows [linear; angular], h_G = A_G q̇: the
+//! linear momentum and the angular momentum about the centre of mass c, world axes). A
+//! subtree moved by joint j at unit rate has, with M_j, S_j as above and I_j its rotational
+//! inertia about the world origin (Σ R I_P Rᵀ − (p̂ ĥ + ĥ p̂) − m p̂², h = R h_P),
+//!
+//! ```text
+//! revolute (ω = a about p_j):  l = a × (S_j − M_j p_j),   k_O = I_j a − S_j × (a × p_j)
+//! prismatic (v = a):            l = M_j a,                  k_O = S_j × a
+//! ```
+//!
+//! (a free base: its linear columns as prismatic along R e_k, its angular ones as revolute
+//! about R e_k), and the column is [l; k_O − c × l].
 
 use super::geometry::{BodyInertia, JointTransform};
+use super::spatial::{congruence, symmetric};
 use crate::model::{JointKind, Model};
 use crate::sym::{Graph, Mat3, Node, Vec3};
 
@@ -213,6 +227,91 @@ pub fn body_jacobians(
                 on_path = model.bodies[j].parent;
             }
             rows
+        })
+        .collect()
+}
+
+/// A_G, the centroidal momentum matrix: 6 rows [linear; angular about the centre of mass]
+/// of nv entries, world axes.
+pub fn centroidal_momentum_matrix(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    inertias: &[BodyInertia],
+) -> Vec<Vec<Node>> {
+    let poses = body_poses(g, model, transforms);
+    let n = model.bodies.len();
+    let mut mass: Vec<Node> = inertias.iter().map(|b| b.mass).collect();
+    let mut moment: Vec<Vec3> = (0..n)
+        .map(|i| first_moment_in_world(g, &poses[i], &inertias[i]))
+        .collect();
+    // Each body's rotational inertia about the world origin, world axes.
+    let mut rotational: Vec<Mat3> = (0..n)
+        .map(|i| {
+            let (pose, inertia) = (&poses[i], &inertias[i]);
+            let rotated = congruence(g, pose.rotation_in_world, inertia.inertia_about_origin);
+            let h = pose.rotation_in_world.mul_vec(g, inertia.first_moment);
+            let (p_hat, h_hat) = (pose.origin_in_world.cross_matrix(g), h.cross_matrix(g));
+            let ph = p_hat.mul(g, h_hat);
+            let cross_terms = symmetric(|r, c| g.add(ph.get(r, c), ph.get(c, r)));
+            let pp = symmetric(|r, c| p_hat.row(r).dot(g, p_hat.col(c)));
+            rotated
+                .sub(g, cross_terms)
+                .sub(g, pp.scale(g, inertia.mass))
+        })
+        .collect();
+    for i in (0..n).rev() {
+        if let Some(p) = model.bodies[i].parent {
+            mass[p] = g.add(mass[p], mass[i]);
+            moment[p] = moment[p].add(g, moment[i]);
+            rotational[p] = rotational[p].add(g, rotational[i]);
+        }
+    }
+    let centre = center_of_mass(g, model, transforms, inertias);
+    let mut columns: Vec<(Vec3, Vec3)> = vec![(Vec3::zero(g), Vec3::zero(g)); model.nv];
+    for (j, body) in model.bodies.iter().enumerate() {
+        let pose = &poses[j];
+        // The subtree turning at unit rate about `axis` through P_j, or sliding along it.
+        let turning = |axis: Vec3| {
+            let linear = axis.cross(g, moment[j].sub(g, pose.origin_in_world.scale(g, mass[j])));
+            let about_origin = rotational[j]
+                .mul_vec(g, axis)
+                .sub(g, moment[j].cross(g, axis.cross(g, pose.origin_in_world)));
+            (linear, about_origin)
+        };
+        let sliding = |axis: Vec3| (axis.scale(g, mass[j]), moment[j].cross(g, axis));
+        let about_centre = |(linear, about_origin): (Vec3, Vec3)| {
+            (linear, about_origin.sub(g, centre.cross(g, linear)))
+        };
+        let k = body.joint.idx_v;
+        match body.joint.kind {
+            JointKind::Revolute { axis_in_joint } => {
+                let axis = pose
+                    .rotation_in_world
+                    .mul_vec(g, Vec3::constant(g, axis_in_joint));
+                columns[k] = about_centre(turning(axis));
+            }
+            JointKind::Prismatic { axis_in_joint } => {
+                let axis = pose
+                    .rotation_in_world
+                    .mul_vec(g, Vec3::constant(g, axis_in_joint));
+                columns[k] = about_centre(sliding(axis));
+            }
+            JointKind::Free => {
+                for e in 0..3 {
+                    let axis = pose.rotation_in_world.col(e);
+                    columns[k + e] = about_centre(sliding(axis));
+                    columns[k + 3 + e] = about_centre(turning(axis));
+                }
+            }
+        }
+    }
+    (0..6)
+        .map(|row| {
+            columns
+                .iter()
+                .map(|(l, a)| if row < 3 { l.get(row) } else { a.get(row - 3) })
+                .collect()
         })
         .collect()
 }

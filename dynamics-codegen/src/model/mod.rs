@@ -63,13 +63,15 @@ pub struct Outputs {
     pub joint_placements: bool,
     /// Every body frame's Jacobian, world-aligned at its origin.
     pub joint_jacobians: bool,
+    /// The centroidal momentum matrix A_G.
+    pub centroidal_momentum_matrix: bool,
 }
 
 impl Outputs {
     /// The output names the language accepts: the names of the functions they generate
     /// (`kinetic_energy` and `potential_energy` come together, as do the three constraint
     /// functions).
-    pub const NAMES: [&'static str; 19] = [
+    pub const NAMES: [&'static str; 20] = [
         "inverse_dynamics",
         "gravity",
         "bias",
@@ -89,6 +91,7 @@ impl Outputs {
         "center_of_mass_jacobian",
         "joint_placements",
         "joint_jacobians",
+        "centroidal_momentum_matrix",
     ];
 
     /// Short names accepted too, each with the name it stands for.
@@ -120,6 +123,7 @@ impl Outputs {
             center_of_mass_jacobian: false,
             joint_placements: false,
             joint_jacobians: false,
+            centroidal_momentum_matrix: false,
         }
     }
 
@@ -161,6 +165,7 @@ impl Outputs {
             "center_of_mass_jacobian" => &mut self.center_of_mass_jacobian,
             "joint_placements" => &mut self.joint_placements,
             "joint_jacobians" => &mut self.joint_jacobians,
+            "centroidal_momentum_matrix" => &mut self.centroidal_momentum_matrix,
             "constraint_residual" | "constraint_jacobian" | "constraint_bias" => {
                 &mut self.constraints
             }
