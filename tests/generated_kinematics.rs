@@ -1,14 +1,16 @@
-//! The generated kinematics: body placements, body Jacobians, the centre of mass and its
-//! Jacobian, the centroidal momentum matrix:
+//! The generated kinematics: body placements, Jacobians, velocities and J̇ v, the centre of
+//! mass and its Jacobian, the centroidal momentum matrix:
 //! - against Pinocchio's `forwardKinematics` (oMi), `getJointJacobian(LOCAL_WORLD_ALIGNED)`,
-//!   `centerOfMass`, `jacobianCenterOfMass` and `ccrba` for the five anchor robots, imported from the
+//!   its joint velocities and `getJointJacobianTimeVariation` times v, `centerOfMass`,
+//!   `jacobianCenterOfMass` and `ccrba` for the five anchor robots, imported from the
 //!   same URDF files, at Pinocchio's 20 sampled configurations each
 //!   (`tests/data/pinocchio_ext/<name>_kinematics.json`), to 1e-12;
 //! - on a free-floating branched tree with a prismatic joint: placements and centre of mass
 //!   against the runtime reference (body poses and mass centres, written independently),
 //!   and both Jacobians against central finite differences of the generated placements and
 //!   centre of mass along q ⊕ δ (the free base moved on its manifold by
-//!   `integrate_configuration`), and A_G q̇ against the bodies' momentum summed from those.
+//!   `integrate_configuration`), J̇ v against central differences of J v along the motion,
+//!   and A_G q̇ against the bodies' momentum summed from the placements and Jacobians.
 
 use dynamics_runtime::{integrate_configuration, mechanism, Mechanism, Reference};
 use serde::Deserialize;
@@ -16,39 +18,39 @@ use serde::Deserialize;
 mechanism! {
     pub struct PendulumKinematics;
     urdf: "../models/urdf/pendulum.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases];
 }
 
 mechanism! {
     pub struct DoublePendulumKinematics;
     urdf: "../models/urdf/double_pendulum.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases];
 }
 
 mechanism! {
     pub struct Planar3Kinematics;
     urdf: "../models/urdf/planar3.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases];
     allow: [triangle_inequality];
 }
 
 mechanism! {
     pub struct Ur5Kinematics;
     urdf: "../models/urdf/ur5.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases];
 }
 
 mechanism! {
     pub struct PandaKinematics;
     urdf: "../models/urdf/panda.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases];
 }
 
 mechanism! {
     /// A free-floating base with two branches, one ending in a slider; offset mass centres
     /// and a rotated placement, so that no term vanishes by symmetry.
     pub struct FreeTreeKinematics;
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases];
     body base { mass: 3.0, com: [0.01, 0.02, -0.03], inertia: [[0.1, 0.01, 0.0], [0.01, 0.12, 0.02], [0.0, 0.02, 0.09]] }
     body left { mass: 1.0, com: [0.1, 0.0, 0.0], shape: rod(length: 0.2, axis: x) }
     body right { mass: 0.7, com: [0.0, 0.05, 0.01], shape: box(size: [0.05, 0.1, 0.02]) }
@@ -73,6 +75,9 @@ struct Sample {
     joint_placements: Vec<Placement>,
     joint_jacobians_world: Vec<Vec<Vec<f64>>>,
     centroidal_momentum_matrix: Vec<Vec<f64>>,
+    v: Vec<f64>,
+    joint_jacobian_time_derivative_times_v_world: Vec<[f64; 6]>,
+    joint_velocities_local: Vec<[f64; 6]>,
 }
 
 #[derive(Deserialize)]
@@ -131,6 +136,37 @@ fn check_kinematics<const NQ: usize, const NV: usize, const NB: usize>(
                         &|| format!("{name} sample {k} body {b} J[{r}][{c}]"),
                     );
                 }
+            }
+        }
+    }
+}
+
+type Twists<const NB: usize> = [[f64; 6]; NB];
+
+/// Compares one robot's generated body velocities and J̇ v with Pinocchio's (its velocities
+/// are in the body frame: turned into world axes with its own placements).
+fn check_rates<const NQ: usize, const NV: usize, const NB: usize>(
+    name: &str,
+    velocities: fn(&[f64; NQ], &[f64; NV]) -> Twists<NB>,
+    biases: fn(&[f64; NQ], &[f64; NV]) -> Twists<NB>,
+) {
+    for (k, sample) in samples(name).iter().enumerate() {
+        let q: [f64; NQ] = sample.q.clone().try_into().expect("nq matches");
+        let v: [f64; NV] = sample.v.clone().try_into().expect("nv matches");
+        let (twists, jdot_v) = (velocities(&q, &v), biases(&q, &v));
+        for b in 0..NB {
+            let rotation = &sample.joint_placements[b].rotation;
+            let local = &sample.joint_velocities_local[b];
+            for r in 0..6 {
+                let block = 3 * (r / 3);
+                let world: f64 = (0..3).map(|c| rotation[r % 3][c] * local[block + c]).sum();
+                assert_close(twists[b][r], world, &|| {
+                    format!("{name} sample {k} body {b} velocity[{r}]")
+                });
+                let expected = sample.joint_jacobian_time_derivative_times_v_world[b][r];
+                assert_close(jdot_v[b][r], expected, &|| {
+                    format!("{name} sample {k} body {b} J̇v[{r}]")
+                });
             }
         }
     }
@@ -241,6 +277,35 @@ fn placements_and_joint_jacobians_match_pinocchio() {
         "panda",
         PandaKinematics::joint_placements::<f64>,
         PandaKinematics::joint_jacobians::<f64>,
+    );
+}
+
+#[test]
+fn body_velocities_and_acceleration_biases_match_pinocchio() {
+    check_rates(
+        "pendulum",
+        PendulumKinematics::joint_velocities::<f64>,
+        PendulumKinematics::joint_acceleration_biases::<f64>,
+    );
+    check_rates(
+        "double_pendulum",
+        DoublePendulumKinematics::joint_velocities::<f64>,
+        DoublePendulumKinematics::joint_acceleration_biases::<f64>,
+    );
+    check_rates(
+        "planar3",
+        Planar3Kinematics::joint_velocities::<f64>,
+        Planar3Kinematics::joint_acceleration_biases::<f64>,
+    );
+    check_rates(
+        "ur5",
+        Ur5Kinematics::joint_velocities::<f64>,
+        Ur5Kinematics::joint_acceleration_biases::<f64>,
+    );
+    check_rates(
+        "panda",
+        PandaKinematics::joint_velocities::<f64>,
+        PandaKinematics::joint_acceleration_biases::<f64>,
     );
 }
 
@@ -441,6 +506,34 @@ fn centroidal_momentum_of_a_free_tree_is_the_bodies_momentum() {
                 generated[3 + r],
                 angular[r]
             );
+        }
+    }
+}
+
+/// On the free tree, J̇ q̇ is the derivative of J q̇ along the motion: J(q ⊕ h q̇) q̇ against
+/// J(q ⊖ h q̇) q̇ by central differences.
+#[test]
+fn acceleration_biases_of_a_free_tree_are_the_rate_of_the_jacobians() {
+    let h = 1e-6;
+    for k in 0..6 {
+        let q = free_tree_configuration(k);
+        let v: [f64; 9] = std::array::from_fn(|i| (0.4 * i as f64 + 0.3 * k as f64).cos());
+        let along = |step: f64| {
+            let mut out = [0.0; 10];
+            integrate_configuration(&q, &v, step, &[(0, 0)], &mut out);
+            FreeTreeKinematics::joint_velocities(&out, &v)
+        };
+        let (plus, minus) = (along(h), along(-h));
+        let bias = FreeTreeKinematics::joint_acceleration_biases(&q, &v);
+        for b in 0..4 {
+            for r in 0..6 {
+                let rate = (plus[b][r] - minus[b][r]) / (2.0 * h);
+                assert!(
+                    (bias[b][r] - rate).abs() <= 1e-7,
+                    "q {q:?} body {b} J̇v[{r}] {} against {rate}",
+                    bias[b][r]
+                );
+            }
         }
     }
 }

@@ -16,6 +16,7 @@
 //! | `joint_reactions(q, v, a)` | [F; M_P] each joint transmits to its body | [`rnea`] |
 //! | `center_of_mass(q)`, `center_of_mass_jacobian(q)` | c, J_c in the world frame (asked for by name) | [`kinematics`] |
 //! | `centroidal_momentum_matrix(q)` | A_G: momentum and angular momentum about the centre of mass (asked for by name) | [`kinematics`] |
+//! | `joint_velocities(q, v)`, `joint_acceleration_biases(q, v)` | each body's [v_P; ω] and J̇ q̇, world axes at its origin (asked for by name) | [`kinematics`] + [`rnea`]'s forward sweep |
 //! | `joint_placements(q)`, `joint_jacobians(q)` | each body's (R, p) in the world and its 6 × nv Jacobian, world-aligned at its origin (asked for by name) | [`kinematics`] |
 //! | `force_analysis(q, v, a)` | every reaction component and driving effort, with the pivots of R | [`statics`] + [`qr`] |
 //! | `constraint_residual(q)`, `constraint_jacobian(q)`, `constraint_bias(q, v)` | φ, Φ_q, γ of the loop closures | [`statics`] |
@@ -171,6 +172,20 @@ pub(crate) const CATALOG: &[Entry] = &[
         arrays: &[Array::Q],
         loads: false,
         expand: joint_jacobians,
+    },
+    Entry {
+        name: "joint_velocities",
+        wanted: |m| m.outputs.joint_velocities && m.nv > 0,
+        arrays: &[Array::Q, Array::V],
+        loads: false,
+        expand: joint_velocities,
+    },
+    Entry {
+        name: "joint_acceleration_biases",
+        wanted: |m| m.outputs.joint_acceleration_biases && m.nv > 0,
+        arrays: &[Array::Q, Array::V],
+        loads: false,
+        expand: joint_acceleration_biases,
     },
     Entry {
         name: "centroidal_momentum_matrix",
@@ -586,6 +601,53 @@ fn joint_jacobians(model: &Model) -> Expanded {
               [linear; angular], at the frame's origin with the world's axes: \
               [v_P; ω] in world coordinates = J q̇ (Pinocchio's `getJointJacobian` in \
               `LOCAL_WORLD_ALIGNED`). Columns of joints that do not move the body are zero."
+            .to_owned(),
+    }
+}
+
+fn joint_velocities(model: &Model) -> Expanded {
+    let (g, t, _) = fresh_graph(model);
+    let v = inputs(&g, Array::V, model.nv);
+    let velocities = kinematics::body_jacobians(&g, model, &t)
+        .into_iter()
+        .map(|rows| {
+            let twist = rows
+                .iter()
+                .map(|row| {
+                    let terms: Vec<Node> = row.iter().zip(&v).map(|(&j, &x)| g.mul(j, x)).collect();
+                    g.sum(&terms)
+                })
+                .collect();
+            Output::Vector(twist)
+        })
+        .collect();
+    Expanded {
+        graph: g,
+        output: Output::Stack(velocities),
+        doc: "The velocity of every body's frame (indexed like `BODY_NAMES`), [v_P; ω] at its \
+              origin in world axes: J q̇ with J of `joint_jacobians` (Pinocchio's joint \
+              velocity in `LOCAL_WORLD_ALIGNED`)."
+            .to_owned(),
+    }
+}
+
+fn joint_acceleration_biases(model: &Model) -> Expanded {
+    let (g, t, _) = fresh_graph(model);
+    let v = inputs(&g, Array::V, model.nv);
+    let zero = vec![g.zero(); model.nv];
+    let biases = kinematics::acceleration_biases(&g, model, &t, &v, &zero)
+        .into_iter()
+        .map(|(linear, angular)| {
+            Output::Vector(linear.0.iter().chain(&angular.0).copied().collect())
+        })
+        .collect();
+    Expanded {
+        graph: g,
+        output: Output::Stack(biases),
+        doc: "J̇ q̇ of every body's frame (indexed like `BODY_NAMES`), world axes at its \
+              origin: the classical acceleration [a_P; α] at q̈ = 0 without gravity, so that \
+              [a_P; α] = J q̈ + J̇ q̇ (what task-space control needs; Pinocchio's \
+              `getJointJacobianTimeVariation` times v, `LOCAL_WORLD_ALIGNED`)."
             .to_owned(),
     }
 }

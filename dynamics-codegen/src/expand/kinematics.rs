@@ -50,6 +50,7 @@
 //! about R e_k), and the column is [l; k_O − c × l].
 
 use super::geometry::{BodyInertia, JointTransform};
+use super::rnea::{self, SweepInputs};
 use super::spatial::{congruence, symmetric};
 use crate::model::{JointKind, Model};
 use crate::sym::{Graph, Mat3, Node, Vec3};
@@ -312,6 +313,36 @@ pub fn centroidal_momentum_matrix(
                 .iter()
                 .map(|(l, a)| if row < 3 { l.get(row) } else { a.get(row - 3) })
                 .collect()
+        })
+        .collect()
+}
+
+/// Every body's classical acceleration [a_P; α] in world axes at velocity `velocity` and
+/// acceleration `acceleration`, without gravity: the Newton–Euler forward sweep
+/// ([`rnea::motions`], body frames) turned into the world. At q̈ = 0 it is J̇ q̇.
+pub fn acceleration_biases(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    velocity: &[Node],
+    acceleration: &[Node],
+) -> Vec<(Vec3, Vec3)> {
+    let inputs = SweepInputs {
+        velocity,
+        acceleration,
+        gravity: false,
+        loads: false,
+    };
+    let motions = rnea::motions(g, model, transforms, &inputs);
+    let poses = body_poses(g, model, transforms);
+    motions
+        .iter()
+        .zip(&poses)
+        .map(|(motion, pose)| {
+            (
+                pose.rotation_in_world.mul_vec(g, motion.accel),
+                pose.rotation_in_world.mul_vec(g, motion.alpha),
+            )
         })
         .collect()
 }

@@ -65,13 +65,17 @@ pub struct Outputs {
     pub joint_jacobians: bool,
     /// The centroidal momentum matrix A_G.
     pub centroidal_momentum_matrix: bool,
+    /// Every body frame's velocity [v_P; ω], world-aligned at its origin.
+    pub joint_velocities: bool,
+    /// Every body frame's J̇ q̇, world-aligned at its origin.
+    pub joint_acceleration_biases: bool,
 }
 
 impl Outputs {
     /// The output names the language accepts: the names of the functions they generate
     /// (`kinetic_energy` and `potential_energy` come together, as do the three constraint
     /// functions).
-    pub const NAMES: [&'static str; 20] = [
+    pub const NAMES: [&'static str; 22] = [
         "inverse_dynamics",
         "gravity",
         "bias",
@@ -92,6 +96,8 @@ impl Outputs {
         "joint_placements",
         "joint_jacobians",
         "centroidal_momentum_matrix",
+        "joint_velocities",
+        "joint_acceleration_biases",
     ];
 
     /// Short names accepted too, each with the name it stands for.
@@ -124,6 +130,8 @@ impl Outputs {
             joint_placements: false,
             joint_jacobians: false,
             centroidal_momentum_matrix: false,
+            joint_velocities: false,
+            joint_acceleration_biases: false,
         }
     }
 
@@ -166,6 +174,8 @@ impl Outputs {
             "joint_placements" => &mut self.joint_placements,
             "joint_jacobians" => &mut self.joint_jacobians,
             "centroidal_momentum_matrix" => &mut self.centroidal_momentum_matrix,
+            "joint_velocities" => &mut self.joint_velocities,
+            "joint_acceleration_biases" => &mut self.joint_acceleration_biases,
             "constraint_residual" | "constraint_jacobian" | "constraint_bias" => {
                 &mut self.constraints
             }
