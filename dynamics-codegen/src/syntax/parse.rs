@@ -31,6 +31,8 @@ impl Parse for Mechanism {
             isa: None,
         };
         let mut floating_base: Option<bool> = None;
+        // Each setting once: the name and the span of its first occurrence.
+        let mut given: Vec<(String, Span)> = Vec::new();
         while !input.is_empty() {
             let docs = parse_docs(input)?;
             if input.peek(Token![pub]) || input.peek(Token![struct]) {
@@ -65,8 +67,20 @@ impl Parse for Mechanism {
                 }
                 setting => {
                     input.parse::<Token![:]>()?;
+                    if let Some((_, first)) = given.iter().find(|(name, _)| name == setting) {
+                        let mut error = syn::Error::new(
+                            keyword.span(),
+                            format!("`{setting}` is given twice; a setting is given once"),
+                        );
+                        error.combine(syn::Error::new(
+                            *first,
+                            format!("the first `{setting}` is here"),
+                        ));
+                        return Err(error);
+                    }
+                    given.push((setting.to_string(), keyword.span()));
                     match setting {
-                        "gravity" => mechanism.gravity = Some(parse_vector(input)?),
+                        "gravity" => mechanism.gravity = Some(parse_gravity(input)?),
                         "outputs" => mechanism.outputs = Some(parse_name_list(input)?),
                         "allow" => mechanism.allow = parse_name_list(input)?,
                         "parameters" => mechanism.parameters = parse_parameters(input)?,
@@ -131,6 +145,21 @@ impl Parse for Mechanism {
         }
         Ok(mechanism)
     }
+}
+
+/// The value of `gravity:`: `[x, y, z]` or `none` (zero gravity).
+fn parse_gravity(input: ParseStream) -> syn::Result<Gravity> {
+    if input.peek(Ident) {
+        let word: Ident = input.parse()?;
+        if word == "none" {
+            return Ok(Gravity::None(SpanRange::from(word.span())));
+        }
+        return Err(syn::Error::new(
+            word.span(),
+            format!("expected `[x, y, z]` or `none` (zero gravity), found `{word}`"),
+        ));
+    }
+    Ok(Gravity::Vector(parse_vector(input)?))
 }
 
 /// Doc comments (`///` lines) before an item.
