@@ -447,12 +447,12 @@ fn an_unknown_output_suggests_the_closest_name() {
         "{e}"
     );
     assert_eq!(
-        super::rules::closest("bodi", &["body", "joint"]),
+        crate::syntax::closest("bodi", &["body", "joint"]),
         Some("body")
     );
     assert_eq!(
-        super::rules::closest("jiont", &["body", "joint"]),
+        crate::syntax::closest("jiont", &["body", "joint"]),
         Some("joint")
     );
-    assert_eq!(super::rules::closest("wheel", &["body", "joint"]), None);
+    assert_eq!(crate::syntax::closest("wheel", &["body", "joint"]), None);
 }
