@@ -7,7 +7,8 @@
 //!
 //! A `.rs` file is searched for `mechanism! { ... }` invocations (URDF paths inside them are
 //! relative to the nearest folder with a `Cargo.toml`, as in the macro). A `.urdf` file is
-//! compiled as a fixed-base mechanism with gravity (0, 0, −9.81) and every output.
+//! compiled as a fixed-base mechanism with every output and the default gravity of every
+//! declaration, (0, 0, −9.81).
 //! `--only NAME` keeps one mechanism; `--ops` prints only the op-count table. Beside each
 //! count: the longest chain of dependent operations, in estimated cycles
 //! (`Graph::longest_chain`).
@@ -67,13 +68,10 @@ fn mechanisms(file: &Path) -> Result<Vec<(Mechanism, PathBuf)>, String> {
             .file_name()
             .and_then(|f| f.to_str())
             .unwrap_or_default();
-        let tokens: proc_macro2::TokenStream = format!(
-            "pub struct {}; urdf: {:?}; gravity: [0.0, 0.0, -9.81];",
-            struct_name(stem),
-            path
-        )
-        .parse()
-        .map_err(|e| format!("{e}"))?;
+        let tokens: proc_macro2::TokenStream =
+            format!("pub struct {}; urdf: {:?};", struct_name(stem), path)
+                .parse()
+                .map_err(|e| format!("{e}"))?;
         let mechanism = syn::parse2(tokens).map_err(|e| e.to_string())?;
         let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
         return Ok(vec![(mechanism, dir)]);

@@ -104,7 +104,16 @@ pub fn import(
             JointType::Revolute | JointType::Continuous => JointKind::Revolute,
             JointType::Prismatic => JointKind::Prismatic,
             JointType::Fixed => JointKind::Fixed,
-            JointType::Floating | JointType::Planar | JointType::Spherical => {
+            JointType::Floating => {
+                refuse(format!(
+                    "joint `{}` is a `floating` joint, which is not supported inside the tree; \
+                     for a floating root link, leave its joint out of the file and declare \
+                     `floating_base: true;` (the root link then gets a free joint `root_joint`)",
+                    joint.name
+                ));
+                continue;
+            }
+            JointType::Planar | JointType::Spherical => {
                 refuse(format!(
                     "joint `{}` is a `{}` joint, which is not supported (use revolute, \
                      continuous, prismatic or fixed joints)",
@@ -1110,7 +1119,8 @@ mod tests {
                 "URDF file `robot.urdf`: joint `b` mimics joint `a`; mimic joints are not \
                  supported (declare it as an independent joint or make it fixed)",
                 "URDF file `robot.urdf`: joint `c` is a `floating` joint, which is not supported \
-                 (use revolute, continuous, prismatic or fixed joints)",
+                 inside the tree; for a floating root link, leave its joint out of the file and \
+                 declare `floating_base: true;` (the root link then gets a free joint `root_joint`)",
             ]
         );
     }

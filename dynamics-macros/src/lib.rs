@@ -7,7 +7,17 @@ use proc_macro::TokenStream;
 
 /// Declares a mechanism and generates its type, its runtime model and its dynamics.
 ///
-/// See the `dynamics_runtime` crate documentation for the language.
+/// The language (settings, bodies, joints, loads, constraints, the functions generated and
+/// their signatures) is documented, with tested examples, in the module
+/// `dynamics_runtime::language`.
+///
+/// ```rust,ignore
+/// mechanism! {
+///     pub struct Pendulum;
+///     body bob { mass: 2.0, com: [0.0, 0.0, -0.5], shape: point }
+///     joint pivot: revolute(ground -> bob) { axis: y }
+/// }
+/// ```
 #[proc_macro]
 pub fn mechanism(input: TokenStream) -> TokenStream {
     dynamics_codegen::expand_mechanism(input.into()).into()

@@ -8,7 +8,7 @@
 //! | what | items |
 //! | --- | --- |
 //! | numbers | [`Scalar`] (`f32`, `f64`, [`DoubleDouble`]), [`Real`] |
-//! | a declared mechanism | the [`mechanism!`] macro; the [`Mechanism`], [`Dynamics`], [`Lagrangian`] and [`Energy`] traits its type implements |
+//! | a declared mechanism | the [`mechanism!`] macro (its language: [`language`]); the [`Mechanism`], [`Dynamics`], [`Lagrangian`] and [`Energy`] traits its type implements |
 //! | the mechanism as data | [`Model`], built and validated by [`ModelBuilder`] |
 //! | the reference | [`Reference`]: inverse and forward dynamics, M, C, energies, joint reactions, poses |
 //! | simulation | [`integrators`], [`integrate_configuration`], loop closure ([`closure`]) |
@@ -23,6 +23,7 @@ mod dynamics;
 mod fast_trig;
 pub mod integrators;
 pub mod isa;
+pub mod language;
 mod mechanism;
 mod model;
 mod reference;

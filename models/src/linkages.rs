@@ -11,6 +11,7 @@ mechanism! {
     /// 100 N and 200 N downward at 0.2 m and 0.8 m, its weight neglected (no gravity).
     /// Equilibrium gives A_x = 0, A_y = 120 N, B_y = 180 N.
     pub struct SupportedBeam;
+    gravity: none;
 
     /// The beam along x (its mass plays no part at rest).
     body beam { mass: 4.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }

@@ -22,6 +22,7 @@ mechanism! {
     /// The seed's eccentric rotor: a 2 kg rotor whose mass centre sits e = 1 mm off its
     /// spin axis. At ω = 100 rad/s the bearing carries the inertia force m e ω² = 20 N.
     pub struct EccentricRotor;
+    gravity: none;
     outputs: [inverse_dynamics, reactions, mass_matrix, energy];
 
     /// The rotor: a solid disc (radius 5 cm, 2 cm thick) about its spin axis z.
@@ -36,6 +37,7 @@ mechanism! {
     /// kg·m². Spinning at ω = (1, 2, 3) rad/s with α = 0 it needs M_G = ω × I_G ω =
     /// (0.6, −0.6, 0.2) N·m.
     pub struct GyroscopicBody;
+    gravity: none;
     outputs: [inverse_dynamics, mass_matrix, forward_dynamics, energy];
 
     /// The body, its frame at the mass centre along the principal axes.

@@ -3,6 +3,7 @@ use dynamics_runtime::mechanism;
 
 mechanism! {
     pub struct Tilted;
+    gravity: none;
     body beam { mass: 4.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }
     joint A: revolute(ground -> beam) { axis: z }
     constraint B: roller(ground at [1.0, 0.0, 0.0], beam at [1.0, 0.0, 0.0]) { normal: [0.0, 1.0, 1.0] };

@@ -3,6 +3,7 @@ use dynamics_runtime::mechanism;
 
 mechanism! {
     pub struct Undriven;
+    gravity: none;
     body crank { mass: 0.5, com: [0.05, 0.0, 0.0], shape: rod(length: 0.1, axis: x) }
     body coupler { mass: 1.2, com: [0.175, 0.0, 0.0], shape: rod(length: 0.35, axis: x) }
     body rocker { mass: 1.0, com: [0.15, 0.0, 0.0], shape: rod(length: 0.3, axis: x) }

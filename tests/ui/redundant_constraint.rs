@@ -4,6 +4,7 @@ use dynamics_runtime::mechanism;
 
 mechanism! {
     pub struct Redundant;
+    gravity: none;
     body a { mass: 1.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }
     body b { mass: 1.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }
     joint ground_pin: revolute(ground -> a) { axis: z }

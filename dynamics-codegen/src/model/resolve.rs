@@ -233,8 +233,9 @@ pub(crate) fn resolve(mechanism: &syntax::Mechanism, diagnostics: &mut Diagnosti
         diagnostics,
     };
     let gravity = match &mechanism.gravity {
-        Some(g) => r.constant_vector(g, "gravity"),
-        None => [0.0; 3],
+        Some(syntax::Gravity::Vector(g)) => r.constant_vector(g, "gravity"),
+        Some(syntax::Gravity::None(_)) => [0.0; 3],
+        None => syntax::DEFAULT_GRAVITY,
     };
     let bodies = mechanism
         .bodies

@@ -465,8 +465,13 @@ fn gravity_is_in_the_plane(
         let span = mechanism
             .gravity
             .as_ref()
-            .map_or(SpanRange::from(mechanism.name.span()), |g| g.span);
-        d.error(span, format!("gravity has a z component ({}), but the force analysis is planar (motion in the xy plane); put gravity in the plane or declare `force_analysis: spatial;`", super::rules::computed(resolved.gravity[2])));
+            .map_or(SpanRange::from(mechanism.name.span()), |g| g.span());
+        let default = if mechanism.gravity.is_none() {
+            " (the default when `gravity:` is absent is [0.0, 0.0, -9.81])"
+        } else {
+            ""
+        };
+        d.error(span, format!("gravity has a z component ({}){default}, but the force analysis is planar (motion in the xy plane); put gravity in the plane (e.g. `gravity: [0.0, -9.81, 0.0];`), declare `gravity: none;` for none, or declare `force_analysis: spatial;`", super::rules::computed(resolved.gravity[2])));
     }
 }
 

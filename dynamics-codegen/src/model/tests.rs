@@ -30,6 +30,74 @@ fn falling_rod_lowers() {
     assert_eq!(m.outputs, Outputs::all());
 }
 
+/// No `gravity:` means (0, 0, −9.81), as in Pinocchio, MuJoCo and Drake; `gravity: none;`
+/// means zero; a vector is taken as written.
+#[test]
+fn gravity_defaults_to_minus_z_and_none_is_zero() {
+    let gravity = |setting: proc_macro2::TokenStream| {
+        lower_tokens(quote! {
+            pub struct P;
+            #setting
+            body bob { mass: 1.0, com: [0.0, -0.5, 0.0], shape: point }
+            joint pivot: revolute(ground -> bob) { axis: z }
+        })
+        .expect("valid")
+        .gravity_in_world
+    };
+    assert_eq!(gravity(quote! {}), [0.0, 0.0, -9.81]);
+    assert_eq!(gravity(quote! { gravity: none; }), [0.0; 3]);
+    assert_eq!(gravity(quote! { gravity: [0.0, 0.0, 0.0]; }), [0.0; 3]);
+    assert_eq!(
+        gravity(quote! { gravity: [0.0, -9.81, 0.0]; }),
+        [0.0, -9.81, 0.0]
+    );
+}
+
+/// Each setting is given once: the second is an error at the second, naming the first.
+#[test]
+fn a_setting_given_twice_is_an_error() {
+    for (first, second) in [
+        (
+            quote! { gravity: none; },
+            quote! { gravity: [0.0, 0.0, -1.0]; },
+        ),
+        (quote! { outputs: [energy]; }, quote! { outputs: [energy]; }),
+        (
+            quote! { parameters: [a = 1.0]; },
+            quote! { parameters: [a = 1.0]; },
+        ),
+        (quote! { allow: []; }, quote! { allow: []; }),
+        (quote! { urdf: "a.urdf"; }, quote! { urdf: "a.urdf"; }),
+        (
+            quote! { floating_base: true; },
+            quote! { floating_base: false; },
+        ),
+        (
+            quote! { force_analysis: planar; },
+            quote! { force_analysis: spatial; },
+        ),
+        (quote! { isa: baseline; }, quote! { isa: dispatch; }),
+    ] {
+        let setting = first.to_string();
+        let name = setting.split(' ').next().unwrap_or_default().to_string();
+        let e = errors(quote! {
+            pub struct P;
+            #first
+            #second
+            body bob { mass: 1.0, com: [0.0, -0.5, 0.0], shape: point }
+            joint pivot: revolute(ground -> bob) { axis: z }
+        });
+        assert_eq!(
+            e,
+            [
+                format!("`{name}` is given twice; a setting is given once"),
+                format!("the first `{name}` is here"),
+            ],
+            "{setting}"
+        );
+    }
+}
+
 /// A matrix printed by a tool that computed a quarter turn from angles (Pinocchio's Panda):
 /// its 2.2e-16 residues become exact zeros, other entries stay as written.
 #[test]
@@ -379,12 +447,12 @@ fn an_unknown_output_suggests_the_closest_name() {
         "{e}"
     );
     assert_eq!(
-        super::rules::closest("bodi", &["body", "joint"]),
+        crate::syntax::closest("bodi", &["body", "joint"]),
         Some("body")
     );
     assert_eq!(
-        super::rules::closest("jiont", &["body", "joint"]),
+        crate::syntax::closest("jiont", &["body", "joint"]),
         Some("joint")
     );
-    assert_eq!(super::rules::closest("wheel", &["body", "joint"]), None);
+    assert_eq!(crate::syntax::closest("wheel", &["body", "joint"]), None);
 }

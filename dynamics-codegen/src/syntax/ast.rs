@@ -117,6 +117,29 @@ pub struct Matrix {
     pub span: SpanRange,
 }
 
+/// Gravity when a mechanism declares none: (0, 0, −9.81) m/s², the default of Pinocchio,
+/// MuJoCo and Drake. The macro and the command-line compiler share it.
+pub const DEFAULT_GRAVITY: [f64; 3] = [0.0, 0.0, -9.81];
+
+/// The value of `gravity:`.
+#[derive(Clone, Debug)]
+pub enum Gravity {
+    /// `gravity: [x, y, z];`
+    Vector(Vector),
+    /// `gravity: none;` (zero gravity), at the word `none`.
+    None(SpanRange),
+}
+
+impl Gravity {
+    /// The tokens of the value.
+    pub fn span(&self) -> SpanRange {
+        match self {
+            Gravity::Vector(v) => v.span,
+            Gravity::None(span) => *span,
+        }
+    }
+}
+
 /// A whole `mechanism!` invocation.
 #[derive(Clone, Debug)]
 pub struct Mechanism {
@@ -126,8 +149,9 @@ pub struct Mechanism {
     pub visibility: syn::Visibility,
     /// The generated type's name.
     pub name: syn::Ident,
-    /// Gravity in the world frame (zero when absent).
-    pub gravity: Option<Vector>,
+    /// Gravity in the world frame, as declared; `None` when absent, which means the
+    /// default (0, 0, −9.81) ([`DEFAULT_GRAVITY`]).
+    pub gravity: Option<Gravity>,
     /// Requested outputs (all when absent).
     pub outputs: Option<Vec<Name>>,
     /// Declared symbolic parameters and their nominal values.

@@ -25,5 +25,7 @@
 
 mod ast;
 mod parse;
+mod suggest;
 
 pub use ast::*;
+pub(crate) use suggest::closest;

@@ -5,6 +5,7 @@
 //! token and say what was expected.
 
 use super::ast::*;
+use super::closest;
 use proc_macro2::Span;
 use syn::ext::IdentExt;
 use syn::parse::{Parse, ParseStream};
@@ -31,6 +32,8 @@ impl Parse for Mechanism {
             isa: None,
         };
         let mut floating_base: Option<bool> = None;
+        // Each setting once: the name and the span of its first occurrence.
+        let mut given: Vec<(String, Span)> = Vec::new();
         while !input.is_empty() {
             let docs = parse_docs(input)?;
             if input.peek(Token![pub]) || input.peek(Token![struct]) {
@@ -64,15 +67,33 @@ impl Parse for Mechanism {
                     mechanism.constraints.push(parse_constraint(input, docs)?)
                 }
                 setting => {
+                    if !input.peek(Token![:]) {
+                        return Err(unknown_item(&keyword));
+                    }
                     input.parse::<Token![:]>()?;
+                    if let Some((_, first)) = given.iter().find(|(name, _)| name == setting) {
+                        let mut error = syn::Error::new(
+                            keyword.span(),
+                            format!("`{setting}` is given twice; a setting is given once"),
+                        );
+                        error.combine(syn::Error::new(
+                            *first,
+                            format!("the first `{setting}` is here"),
+                        ));
+                        return Err(error);
+                    }
+                    given.push((setting.to_string(), keyword.span()));
                     match setting {
-                        "gravity" => mechanism.gravity = Some(parse_vector(input)?),
+                        "gravity" => mechanism.gravity = Some(parse_gravity(input)?),
                         "outputs" => mechanism.outputs = Some(parse_name_list(input)?),
                         "allow" => mechanism.allow = parse_name_list(input)?,
                         "parameters" => mechanism.parameters = parse_parameters(input)?,
                         "urdf" => {
                             let path: LitStr = input.parse()?;
-                            mechanism.urdf = Some(UrdfSource { path, floating_base: false });
+                            mechanism.urdf = Some(UrdfSource {
+                                path,
+                                floating_base: false,
+                            });
                         }
                         "floating_base" => floating_base = Some(input.parse::<LitBool>()?.value),
                         "force_analysis" => {
@@ -103,14 +124,18 @@ impl Parse for Mechanism {
                             });
                         }
                         _ => {
+                            let hint = match closest(setting, &SETTINGS) {
+                                Some(near) => format!("did you mean `{near}`? The settings are"),
+                                None => "expected one of".to_owned(),
+                            };
                             return Err(syn::Error::new(
                                 keyword.span(),
                                 format!(
-                                    "unknown setting `{setting}`; expected one of gravity, outputs, \
-                                     parameters, allow, urdf, floating_base, force_analysis, isa (or `body`, `joint`, `load`, \
-                                     `constraint`)"
+                                    "unknown setting `{setting}`; {hint} {} (or `body`, `joint`, \
+                                     `load`, `constraint`)",
+                                    SETTINGS.join(", ")
                                 ),
-                            ))
+                            ));
                         }
                     }
                     input.parse::<Token![;]>()?;
@@ -131,6 +156,56 @@ impl Parse for Mechanism {
         }
         Ok(mechanism)
     }
+}
+
+/// The mechanism settings, `name: value;`, each given at most once.
+const SETTINGS: [&str; 8] = [
+    "gravity",
+    "outputs",
+    "parameters",
+    "allow",
+    "urdf",
+    "floating_base",
+    "force_analysis",
+    "isa",
+];
+
+/// The item keywords, each followed by a name.
+const ITEMS: [&str; 4] = ["body", "joint", "load", "constraint"];
+
+/// A word at item level that is neither an item keyword followed by a name nor a setting
+/// followed by `:`: names itself and, for a typo, the keyword meant.
+fn unknown_item(keyword: &Ident) -> syn::Error {
+    let word = keyword.to_string();
+    let message = if ITEMS.contains(&word.as_str()) {
+        format!("expected a name after `{word}`")
+    } else if let Some(near) = closest(&word, &ITEMS) {
+        format!("unknown item `{word}`; did you mean `{near}`?")
+    } else if let Some(near) = closest(&word, &SETTINGS) {
+        format!("unknown item `{word}`; did you mean the setting `{near}: ...;`?")
+    } else {
+        format!(
+            "unknown item `{word}`; expected `body`, `joint`, `load`, `constraint` or a setting \
+             `name: value;` ({})",
+            SETTINGS.join(", ")
+        )
+    };
+    syn::Error::new(keyword.span(), message)
+}
+
+/// The value of `gravity:`: `[x, y, z]` or `none` (zero gravity).
+fn parse_gravity(input: ParseStream) -> syn::Result<Gravity> {
+    if input.peek(Ident) {
+        let word: Ident = input.parse()?;
+        if word == "none" {
+            return Ok(Gravity::None(SpanRange::from(word.span())));
+        }
+        return Err(syn::Error::new(
+            word.span(),
+            format!("expected `[x, y, z]` or `none` (zero gravity), found `{word}`"),
+        ));
+    }
+    Ok(Gravity::Vector(parse_vector(input)?))
 }
 
 /// Doc comments (`///` lines) before an item.
@@ -904,5 +979,26 @@ mod tests {
             }
             other => panic!("unexpected {other:?}"),
         }
+    }
+
+    /// A misspelt item keyword or setting names itself and the word meant.
+    #[test]
+    fn unknown_items_and_settings_suggest_the_word_meant() {
+        let message = |tokens| match parse(tokens) {
+            Ok(_) => String::new(),
+            Err(e) => e.to_string(),
+        };
+        assert_eq!(
+            message(quote! { pub struct P; bodi rod { mass: 1.0 } }),
+            "unknown item `bodi`; did you mean `body`?"
+        );
+        assert_eq!(
+            message(quote! { pub struct P; jiont pivot: revolute(ground -> rod); }),
+            "unknown item `jiont`; did you mean `joint`?"
+        );
+        assert!(message(quote! { pub struct P; gravty: none; })
+            .starts_with("unknown setting `gravty`; did you mean `gravity`?"));
+        assert!(message(quote! { pub struct P; wheel w {} })
+            .starts_with("unknown item `wheel`; expected"));
     }
 }

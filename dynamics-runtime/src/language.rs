@@ -1,0 +1,427 @@
+//! The `mechanism!` language: a reference.
+//!
+//! This module holds no items; it is the reference of what [`mechanism!`](crate::mechanism)
+//! accepts and what it generates. Every example below is a doc test.
+//!
+//! A declaration is a list of items, each optionally preceded by doc comments (`///`):
+//!
+//! | item | form |
+//! | --- | --- |
+//! | the type | `pub struct Name;` (exactly once; any visibility) |
+//! | a setting | `gravity: ..;`, `outputs: [..];`, `parameters: [..];`, `allow: [..];`, `urdf: "..";`, `floating_base: ..;`, `force_analysis: ..;`, `isa: ..;` (each at most once) |
+//! | a body | `body name { mass: .., com: [..], inertia: .. }` or `{ .., shape: .. }` |
+//! | a joint | `joint name: kind(parent -> child) { .. }` or `joint name: kind(parent -> child);` |
+//! | a load | `load name: force on body at [x, y, z];` (also `couple`, `wrench`) |
+//! | a constraint | `constraint name: kind(a at [..], b at [..]) { .. };` |
+//!
+//! The macro expands to the type, its implementations of [`Mechanism`](crate::Mechanism)
+//! (and, as the outputs allow, [`Dynamics`](crate::Dynamics),
+//! [`Lagrangian`](crate::Lagrangian), [`Energy`](crate::Energy)), and one inherent function
+//! per generated output, each generic over [`Scalar`](crate::Scalar) and each with a `_na`
+//! twin taking and returning nalgebra types. The type's rustdoc lists its joints and
+//! coordinates, its loads and the docs of its bodies and joints.
+//!
+//! ```rust
+//! use dynamics_runtime::{mechanism, Mechanism};
+//!
+//! mechanism! {
+//!     /// A point mass on a massless rod of length 0.5 m, hanging along −z.
+//!     pub struct Pendulum;
+//!     body bob { mass: 2.0, com: [0.0, 0.0, -0.5], shape: point }
+//!     joint pivot: revolute(ground -> bob) { axis: y }
+//! }
+//!
+//! assert_eq!((Pendulum::NQ, Pendulum::NV), (1, 1));
+//! assert_eq!(Pendulum::JOINT_NAMES, ["pivot"]);
+//! // No `gravity:` means (0, 0, −9.81): g(q) = m g l sin q.
+//! let q = 0.3_f64;
+//! let g = Pendulum::gravity(&[q]);
+//! assert!((g[0] - 2.0 * 9.81 * 0.5 * q.sin()).abs() < 1e-12);
+//! ```
+//!
+//! # Settings
+//!
+//! ## `gravity`
+//!
+//! `gravity: [x, y, z];` is the acceleration of gravity in the world frame (m/s²).
+//! Without it, gravity is **(0, 0, −9.81)**, the default of Pinocchio, MuJoCo and Drake; the
+//! command-line compiler applies the same default to a `.urdf` file. `gravity: none;` is zero
+//! gravity (so is `gravity: [0.0, 0.0, 0.0];`). Gravity's components are constants (not
+//! parameters).
+//!
+//! ```rust
+//! use dynamics_runtime::{mechanism, Mechanism};
+//!
+//! mechanism! {
+//!     pub struct Planar;
+//!     gravity: [0.0, -9.81, 0.0];
+//!     body bob { mass: 2.0, com: [0.0, -0.5, 0.0], shape: point }
+//!     joint pivot: revolute(ground -> bob) { axis: z }
+//! }
+//! mechanism! {
+//!     pub struct Weightless;
+//!     gravity: none;
+//!     body bob { mass: 2.0, com: [0.0, -0.5, 0.0], shape: point }
+//!     joint pivot: revolute(ground -> bob) { axis: z }
+//! }
+//!
+//! let q = 0.3_f64;
+//! assert!((Planar::gravity(&[q])[0] - 2.0 * 9.81 * 0.5 * q.sin()).abs() < 1e-12);
+//! assert_eq!(Weightless::gravity(&[q]), [0.0]);
+//! assert_eq!(Weightless::model().gravity_in_world(), dynamics_runtime::nalgebra::Vector3::zeros());
+//! assert_eq!(Planar::model().gravity_in_world(), dynamics_runtime::nalgebra::Vector3::new(0.0, -9.81, 0.0));
+//! ```
+//!
+//! ## `outputs`
+//!
+//! `outputs: [name, ...];` chooses the functions generated. Without it, a mechanism without
+//! constraints gets `inverse_dynamics`, `gravity`, `bias`, `mass_matrix`, `coriolis_matrix`,
+//! `forward_dynamics`, `kinetic_energy`, `potential_energy` and `joint_reactions`; a
+//! mechanism with constraints gets `force_analysis`, the three constraint functions,
+//! `mass_matrix`, `bias` and the two energies (the other open-tree functions would ignore
+//! the constraints, so they are generated only when named). An unknown name is an error
+//! that suggests the closest one.
+//!
+//! Every function's arguments come in the order `q`, `v`, then `a` or `tau`, then `p` (only
+//! when the mechanism declares `parameters`), then `loads` (only for the functions marked
+//! *loads* below, and only when the mechanism declares loads). `q: &[T; NQ]`, `v`, `a`,
+//! `tau: &[T; NV]`, `p: &[T; number of parameters]`, `loads: &[T; NUM_LOAD_INPUTS]`.
+//!
+//! | output name | function | arguments | returns |
+//! | --- | --- | --- | --- |
+//! | `inverse_dynamics` | τ = M q̈ + C q̇ + g + b q̇ − Q | `q, v, a` (+ loads) | `[T; NV]` |
+//! | `gravity` | g(q) | `q` | `[T; NV]` |
+//! | `bias` | C(q, q̇) q̇ + g(q) + b q̇ | `q, v` | `[T; NV]` |
+//! | `mass_matrix` | M(q), armature on the diagonal | `q` | `[[T; NV]; NV]` |
+//! | `coriolis_matrix` (or `coriolis`) | the Christoffel-consistent C(q, q̇) | `q, v` | `[[T; NV]; NV]` |
+//! | `forward_dynamics` | q̈ = M⁻¹ (τ + Q − C q̇ − g − b q̇), by whichever of the two methods below has fewer operations | `q, v, tau` (+ loads) | `[T; NV]` |
+//! | `forward_dynamics_aba` | the same by the articulated-body algorithm | `q, v, tau` (+ loads) | `[T; NV]` |
+//! | `forward_dynamics_ldlt` | the same by M and its tree-sparse LDLᵀ | `q, v, tau` (+ loads) | `[T; NV]` |
+//! | `kinetic_energy` (or `energy`: both energies) | T = ½ q̇ᵀ M q̇ | `q, v` | `T` |
+//! | `potential_energy` (or `energy`) | V = −Σ m g·c (zero at the world origin) | `q` | `T` |
+//! | `joint_reactions` (or `reactions`) | per body, the wrench [F; M_P] its joint transmits to it from the parent, in the body frame about the joint point | `q, v, a` (+ loads) | `[[T; 6]; number of moving bodies]` |
+//! | `force_analysis` | reaction components and driving efforts, and the pivots of the QR solve (see [Force analysis](#force-analysis)) | `q, v, a` (+ loads) | `([T; N], [T; N])` |
+//! | `constraint_residual` (or `constraints`: all three) | φ(q), zero when the constraints hold | `q` | `[T; NUM_CLOSURE_EQUATIONS]` |
+//! | `constraint_jacobian` (or `constraints`) | Φ_q = ∂φ/∂q | `q` | `[[T; NV]; NUM_CLOSURE_EQUATIONS]` |
+//! | `constraint_bias` (or `constraints`) | γ with Φ_q q̈ = γ | `q, v` | `[T; NUM_CLOSURE_EQUATIONS]` |
+//!
+//! `kinetic_energy` and `potential_energy` come together, as do the three constraint
+//! functions.
+//!
+//! ```rust
+//! use dynamics_runtime::mechanism;
+//!
+//! mechanism! {
+//!     pub struct Slider;
+//!     gravity: none;
+//!     outputs: [mass_matrix, forward_dynamics, energy];
+//!     body cart { mass: 4.0, shape: point }
+//!     joint rail: prismatic(ground -> cart) { axis: x }
+//! }
+//!
+//! assert_eq!(Slider::mass_matrix(&[0.0]), [[4.0]]);
+//! assert_eq!(Slider::forward_dynamics(&[0.0], &[0.0], &[2.0]), [0.5]);
+//! assert_eq!(Slider::kinetic_energy(&[0.0], &[3.0]), 18.0);
+//! assert_eq!(Slider::potential_energy(&[0.0]), 0.0);
+//! ```
+//!
+//! ## `parameters`
+//!
+//! `parameters: [name = nominal, ...];` declares symbolic parameters: each generated function
+//! then takes `p`, their values in the declared order, and the parameters'
+//! names and nominal values are `Mechanism::PARAMETER_NAMES` and `NOMINAL_PARAMETERS`. A
+//! parameter may stand, scaled by a constant (`m`, `2.0 * m`, `m / 2.0`, `-m`), wherever a
+//! number may, except in axes, rotations, gravity and shape dimensions, which must be
+//! constants. A parameter declared and never used is an error.
+//!
+//! ```rust
+//! use dynamics_runtime::{mechanism, Mechanism};
+//!
+//! mechanism! {
+//!     pub struct Payload;
+//!     parameters: [m = 2.0];
+//!     outputs: [gravity];
+//!     body bob { mass: m, com: [0.0, 0.0, -0.5], shape: point }
+//!     joint pivot: revolute(ground -> bob) { axis: y }
+//! }
+//!
+//! assert_eq!(Payload::PARAMETER_NAMES, ["m"]);
+//! assert_eq!(Payload::NOMINAL_PARAMETERS, [2.0]);
+//! let q = 0.3_f64;
+//! let g = Payload::gravity(&[q], &[3.0]);
+//! assert!((g[0] - 3.0 * 9.81 * 0.5 * q.sin()).abs() < 1e-12);
+//! ```
+//!
+//! ## `allow`
+//!
+//! `allow: [triangle_inequality];` waives the one check that can be waived: that the
+//! principal moments of every inertia satisfy the triangle inequality (I1 + I2 ≥ I3, which
+//! every physical body does). Any other name is an error.
+//!
+//! ## `urdf` and `floating_base`
+//!
+//! `urdf: "path";` adds a URDF file's links (as bodies) and joints (as joints) to the
+//! declaration. The path is relative to the directory of the `Cargo.toml` of the crate that
+//! invokes the macro. `revolute` and `continuous` joints become revolute joints (one
+//! coordinate, the angle), `prismatic` prismatic, `fixed` fixed; the root link is welded to
+//! the ground by a joint `ground_weld`, or, with `floating_base: true;`, given a free joint
+//! `root_joint`. Mimic, planar, floating and spherical joints are refused. Every rule of the
+//! language applies to the imported bodies and joints, with errors at the path.
+//!
+//! ```rust
+//! use dynamics_runtime::{mechanism, Mechanism};
+//!
+//! mechanism! {
+//!     /// A 2 kg rod, its mass centre 0.3 m from its pivot (this repository's fixture).
+//!     pub struct FromUrdf;
+//!     urdf: "../models/urdf/pendulum.urdf";
+//!     gravity: [0.0, -9.81, 0.0];
+//!     outputs: [gravity];
+//! }
+//!
+//! assert_eq!(FromUrdf::JOINT_NAMES, ["joint1"]);
+//! let q = 0.3_f64;
+//! assert!((FromUrdf::gravity(&[q])[0] - 2.0 * 9.81 * 0.3 * q.sin()).abs() < 1e-12);
+//! ```
+//!
+//! ## `force_analysis`
+//!
+//! `force_analysis: planar;` (motion in the world xy plane, three balance equations per
+//! body; the default when the mechanism has constraints) or `force_analysis: spatial;` (six
+//! per body). Declaring it (with no `outputs:`) asks for the `force_analysis` output. In a
+//! planar analysis gravity must lie in the xy plane, so a planar mechanism with constraints
+//! declares `gravity: [0.0, -9.81, 0.0];` (or another in-plane vector) or `gravity: none;`:
+//! the default (0, 0, −9.81) is an error there. See [Force analysis](#force-analysis).
+//!
+//! ## `isa`
+//!
+//! `isa: dispatch;` (the default) generates two copies of each function, one for the
+//! crate's target and one for AVX2 + FMA, chosen at run time (see [`isa`](crate::isa));
+//! `isa: baseline;` generates the crate's target's copy only.
+//!
+//! # Numbers
+//!
+//! Wherever a number is expected, a constant expression is accepted: integer and float
+//! literals, `pi` (or `PI`), unary minus, `+ - * /` and parentheses. An identifier other
+//! than `pi` is a parameter, which may only be multiplied or divided by a constant.
+//!
+//! ```rust
+//! use dynamics_runtime::mechanism;
+//!
+//! mechanism! {
+//!     pub struct Expressions;
+//!     gravity: none;
+//!     outputs: [mass_matrix];
+//!     body bob { mass: 2 * (0.5 + 0.5), com: [1.0 / 2.0, 0.0, 0.0], shape: point }
+//!     joint pivot: revolute(ground -> bob) { axis: z, rotation: rpy(0, 0, pi / 2) }
+//! }
+//!
+//! // M = m l² = 2 · 0.25, whatever the placement's rotation about the axis.
+//! assert!((Expressions::mass_matrix(&[0.0_f64])[0][0] - 0.5).abs() < 1e-15);
+//! ```
+//!
+//! # Bodies
+//!
+//! `body name { mass: m, com: [x, y, z], inertia: .. }`: the mass (kg); the mass centre
+//! c = PG in the body frame (m; the body frame's origin when `com` is absent); and I_G, the
+//! inertia about the mass centre in the body frame (kg·m²), given in one of these forms:
+//!
+//! | form | I_G |
+//! | --- | --- |
+//! | `inertia: [[a, b, c], [d, e, f], [g, h, i]]` | the matrix, by rows (symmetric, positive semi-definite) |
+//! | `inertia: diag([i1, i2, i3])` | diag(i1, i2, i3) |
+//! | `inertia: principal([i1, i2, i3], rotation: R)` | R diag(i1, i2, i3) Rᵀ: the principal axes are the columns of R (any [rotation form](#rotations)) |
+//! | `shape: point` | 0 |
+//! | `shape: sphere(radius: r)` | ⅖ m r² about every axis |
+//! | `shape: box(size: [a, b, c])` | diag(m (b² + c²)/12, m (a² + c²)/12, m (a² + b²)/12) |
+//! | `shape: rod(length: l, axis: x)` | 0 about the axis, m l²/12 about the two others |
+//! | `shape: cylinder(radius: r, length: l, axis: z)` | m r²/2 about the axis, m (3 r² + l²)/12 about the two others |
+//!
+//! A shape is a uniform solid centred at the mass centre; a shape's axis is a body axis,
+//! `x`, `y` or `z` (use `inertia: principal(..)` for another orientation). A body gives
+//! either `inertia` or `shape`, and the fields are `mass`, `com`, `inertia` (or `shape`),
+//! each at most once. Masses are not negative, inertias are symmetric, positive
+//! semi-definite and satisfy the triangle inequality; shape dimensions are not negative.
+//!
+//! ```rust
+//! use dynamics_runtime::{mechanism, Mechanism};
+//!
+//! mechanism! {
+//!     pub struct Shapes;
+//!     gravity: none;
+//!     outputs: [mass_matrix];
+//!     body rod { mass: 3.0, shape: rod(length: 2.0, axis: x) }
+//!     body disc { mass: 2.0, shape: cylinder(radius: 0.5, length: 0.1, axis: z) }
+//!     body ball { mass: 5.0, shape: sphere(radius: 0.2) }
+//!     body brick { mass: 12.0, shape: box(size: [1.0, 2.0, 3.0]) }
+//!     body tilted { mass: 1.0, inertia: principal([1.0, 2.0, 3.0], rotation: rpy(0, 0, pi / 2)) }
+//!     joint a: revolute(ground -> rod) { axis: z }
+//!     joint b: revolute(ground -> disc) { axis: z }
+//!     joint c: revolute(ground -> ball) { axis: z }
+//!     joint d: revolute(ground -> brick) { axis: z }
+//!     joint e: revolute(ground -> tilted) { axis: z }
+//! }
+//!
+//! let model = Shapes::model();
+//! let inertia = |i: usize| model.bodies()[i].inertia.inertia_com_in_body;
+//! let near = |x: f64, y: f64| (x - y).abs() < 1e-12;
+//! assert!(near(inertia(0)[(0, 0)], 0.0) && near(inertia(0)[(2, 2)], 3.0 * 4.0 / 12.0));
+//! assert!(near(inertia(1)[(2, 2)], 2.0 * 0.25 / 2.0));
+//! assert!(near(inertia(2)[(1, 1)], 0.4 * 5.0 * 0.04));
+//! assert!(near(inertia(3)[(0, 0)], 13.0) && near(inertia(3)[(2, 2)], 5.0));
+//! // A quarter turn about z swaps the principal moments about x and y.
+//! assert!(near(inertia(4)[(0, 0)], 2.0) && near(inertia(4)[(1, 1)], 1.0));
+//! let m = Shapes::mass_matrix(&[0.0; 5]);
+//! assert!(near(m[3][3], 5.0));
+//! ```
+//!
+//! # Joints
+//!
+//! `joint name: kind(parent -> child) { field: value, .. }` (or `;` instead of the braces
+//! when there are no fields). The parent is a body or `ground`; every body has exactly one
+//! parent joint and the bodies form a tree rooted at the ground.
+//!
+//! | kind | coordinates |
+//! | --- | --- |
+//! | `revolute` (also `continuous`) | one angle about `axis` (rad) |
+//! | `prismatic` | one displacement along `axis` (m) |
+//! | `fixed` | none: the child is welded to the parent (merged into one composite body) |
+//! | `free` | a free-flying body, from the ground only: q = [position; quaternion x y z w] (7), v = [linear velocity; ω] in the body frame (6) |
+//!
+//! | field | meaning |
+//! | --- | --- |
+//! | `axis` | revolute and prismatic (required), in the joint frame: `x`, `y`, `z`, `-x`, `-y`, `-z` or `[a, b, c]` (not zero) |
+//! | `at: [x, y, z]` | the joint frame's origin in the parent frame (the origin when absent) |
+//! | `rotation` | the joint frame's orientation in the parent frame ([rotation forms](#rotations); the identity when absent) |
+//! | `armature` | rotor inertia reflected to the coordinate, added to M's diagonal (not negative) |
+//! | `damping` | viscous friction b: the joint force b q̇ enters `bias` and `inverse_dynamics` and opposes the motion in `forward_dynamics` (not negative) |
+//! | `driven: true` | an actuator drives the coordinate: the force analysis solves for its effort |
+//!
+//! At q = 0 the child's frame is the joint frame.
+//!
+//! ```rust
+//! use dynamics_runtime::{mechanism, Mechanism};
+//!
+//! mechanism! {
+//!     pub struct Arm;
+//!     gravity: none;
+//!     outputs: [mass_matrix, bias];
+//!     body link { mass: 1.0, com: [0.5, 0.0, 0.0], shape: point }
+//!     body tip { mass: 1.0, com: [0.5, 0.0, 0.0], shape: point }
+//!     joint shoulder: revolute(ground -> link) { axis: z, armature: 0.1, damping: 0.5 }
+//!     joint elbow: revolute(link -> tip) { axis: z, at: [1.0, 0.0, 0.0] }
+//! }
+//! mechanism! {
+//!     pub struct Drone;
+//!     body frame { mass: 1.0, inertia: diag([0.1, 0.1, 0.2]) }
+//!     joint flight: free(ground -> frame);
+//! }
+//!
+//! // M₀₀ = armature + m (0.5 m)² + m (1.5 m)², the tip 0.5 m beyond the elbow at 1 m.
+//! let m = Arm::mass_matrix(&[0.0_f64, 0.0]);
+//! assert!((m[0][0] - (0.1 + 0.25 + 2.25)).abs() < 1e-12);
+//! // Outstretched and turning at the shoulder only: the bias is the damping b q̇.
+//! assert!((Arm::bias(&[0.0_f64, 0.0], &[2.0, 0.0])[0] - 0.5 * 2.0).abs() < 1e-12);
+//! assert_eq!((Drone::NQ, Drone::NV), (7, 6));
+//! ```
+//!
+//! ## Rotations
+//!
+//! | form | rotation |
+//! | --- | --- |
+//! | `rpy(roll, pitch, yaw)` | R = Rz(yaw) Ry(pitch) Rx(roll) (about fixed axes, as URDF's `rpy`; radians) |
+//! | `axis_angle([x, y, z], angle)` | by `angle` (rad) about the axis (normalized; not zero) |
+//! | `[[a, b, c], [d, e, f], [g, h, i]]` | the matrix, by rows (orthonormal, determinant +1) |
+//!
+//! Entries within 1e-15 of 0 or ±1 are made exact, so `rpy(pi / 2, 0, 0)` is exactly a
+//! quarter turn. Rotations are constants (not parameters).
+//!
+//! # Loads
+//!
+//! `load name: force on body at [x, y, z];`, `load name: couple on body;` or
+//! `load name: wrench on body at [x, y, z];` declares a run-time input. A force has 3
+//! inputs, a couple 3, a wrench 6 (the force, then the couple). The loads' inputs are
+//! consecutive entries of the `loads` argument, in the order of declaration, each given
+//! **in the frame of the body it is declared on**; a force acts through the point `at` (in
+//! that frame; the body's origin when absent), a couple is free.
+//! `inverse_dynamics`, `forward_dynamics`, `joint_reactions` and `force_analysis` take
+//! `loads`; the generated type's rustdoc lists each load's entries.
+//!
+//! ```rust
+//! use dynamics_runtime::{mechanism, Mechanism};
+//!
+//! mechanism! {
+//!     pub struct Pushed;
+//!     gravity: none;
+//!     outputs: [inverse_dynamics];
+//!     body bar { mass: 1.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }
+//!     joint pivot: revolute(ground -> bar) { axis: z }
+//!     load push: force on bar at [1.0, 0.0, 0.0];
+//!     load twist: couple on bar;
+//! }
+//!
+//! assert_eq!(Pushed::LOAD_NAMES, ["push", "twist"]);
+//! assert_eq!(Pushed::NUM_LOAD_INPUTS, 6);
+//! // 2 N along the bar's y at its tip, and 0.5 N·m about z: holding it still takes −2.5 N·m.
+//! let loads = [0.0, 2.0, 0.0, 0.0, 0.0, 0.5];
+//! let tau = Pushed::inverse_dynamics(&[0.7_f64], &[0.0], &[0.0], &loads);
+//! assert!((tau[0] + 2.5).abs() < 1e-12);
+//! ```
+//!
+//! # Constraints
+//!
+//! `constraint name: kind(a at [x, y, z], b at [x, y, z]) { field: .. };` connects two
+//! bodies (either may be `ground`) at a point of each, given in that body's frame (its
+//! origin when `at` is absent); the braces and the final `;` are optional. Constraints close
+//! loops (a four-bar) or add supports (a beam on a pin and a roller); the tree of joints
+//! stays the mechanism's coordinates, and the constraints give the closure functions
+//! (`constraint_residual`, `constraint_jacobian`, `constraint_bias`, with
+//! `NUM_CLOSURE_EQUATIONS` equations) and the reactions of the force analysis.
+//!
+//! | kind | holds | reactions |
+//! | --- | --- | --- |
+//! | `pin` | the two points together (spatial: a hinge about `axis`) | planar: two forces; spatial: three forces and the two couples normal to `axis` |
+//! | `ball` | the two points together (spatial) | three forces |
+//! | `roller` (also `slider`) | the second point on the line through the first point normal to `normal` | one force along `normal` |
+//! | `prismatic` | sliding along `axis` | the forces normal to the axis and every couple (planar: one normal force and the couple about z) |
+//! | `weld` | no relative motion | every force and couple component |
+//!
+//! Fields: `normal` (roller) and `axis` (prismatic, spatial pin), in the first body's frame,
+//! written as a joint's axis.
+//!
+//! # Force analysis
+//!
+//! A mechanism with constraints, or with `force_analysis:` declared, gets `force_analysis(q,
+//! v, a[, p][, loads])`: each body's balance equations A(q) x = b(q, q̇, q̈), solved by
+//! Givens QR. It returns (x, the diagonal of R); [`ForceAnalysis`](crate::ForceAnalysis)
+//! turns the pair into the unknowns, refusing an ill-conditioned configuration
+//! ([`ForceAnalysis::checked`](crate::ForceAnalysis::checked)). The unknowns are the
+//! reaction components of every joint and constraint, along the axes of the connection's
+//! first body, each acting on the second body (and, opposite, on the first), then the
+//! efforts of the driven joints; their names are the inherent constant `FORCE_UNKNOWNS`. In a
+//! mechanism without constraints every joint is driven; with constraints, the joints marked
+//! `driven: true`. The unknowns must match the equations, in number and body by body: a
+//! statically indeterminate structure, a motion with no input and a redundant constraint
+//! are compile-time errors.
+//!
+//! ```rust
+//! use dynamics_runtime::{mechanism, ForceAnalysis};
+//!
+//! mechanism! {
+//!     /// A 1 m beam on a pin at A and a roller at B, its weight neglected.
+//!     pub struct Beam;
+//!     gravity: none;
+//!     body beam { mass: 4.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }
+//!     joint A: revolute(ground -> beam) { axis: z }
+//!     constraint B: roller(ground at [1.0, 0.0, 0.0], beam at [1.0, 0.0, 0.0]) { normal: y };
+//!     load P1: force on beam at [0.2, 0.0, 0.0];
+//!     load P2: force on beam at [0.8, 0.0, 0.0];
+//! }
+//!
+//! assert_eq!(Beam::FORCE_UNKNOWNS, ["A.x", "A.y", "B.normal"]);
+//! let loads = [0.0, -100.0, 0.0, 0.0, -200.0, 0.0];
+//! let analysis = ForceAnalysis::from(Beam::force_analysis(&[0.0_f64], &[0.0], &[0.0], &loads));
+//! let [a_x, a_y, b_y] = analysis.checked(1e-9).expect("a determinate structure");
+//! assert!(a_x.abs() < 1e-12 && (a_y - 120.0).abs() < 1e-12 && (b_y - 180.0).abs() < 1e-12);
+//! assert_eq!(Beam::constraint_residual(&[0.0]), [0.0]);
+//! ```
