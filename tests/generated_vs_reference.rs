@@ -10,9 +10,9 @@ mod generated_support;
 
 use dynamics_runtime::reference::Wrench;
 use dynamics_runtime::{Mechanism, Model, Reference};
+use dynamics_tests::condition_number;
 use dynamics_tests::random::SplitMix;
-use dynamics_tests::{max_abs_diff, tolerance_scale};
-use generated_support::{arr, check_against_reference, Function, Inputs, UnderTest};
+use generated_support::{arr, check_against_reference, random_inputs, Function, Inputs, UnderTest};
 use models::anchors::{DoublePendulum, Panda, Pendulum, Planar3, Ur5};
 use models::puma560::Puma560;
 use models::quadruped::Quadruped;
@@ -25,29 +25,14 @@ const STATES: usize = 40;
 
 /// A random state (q with unit quaternions for free joints, v, a, τ) for a model.
 fn random_state(model: &Model, rng: &mut SplitMix) -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>) {
-    let mut q: Vec<f64> = (0..model.nq()).map(|_| rng.uniform(-3.0, 3.0)).collect();
-    for body in model.bodies() {
-        if body.joint.kind == dynamics_runtime::JointKind::FreeFlyer {
-            let k = body.joint.idx_q + 3;
-            let norm = q[k..k + 4].iter().map(|x| x * x).sum::<f64>().sqrt();
-            q[k..k + 4].iter_mut().for_each(|x| *x /= norm);
-        }
-    }
-    let mut vector = |lo: f64, hi: f64| (0..model.nv()).map(|_| rng.uniform(lo, hi)).collect();
-    let v = vector(-2.0, 2.0);
-    let a = vector(-3.0, 3.0);
-    let tau = vector(-5.0, 5.0);
-    (q, v, a, tau)
+    let x = random_inputs(model, &[], 0, rng);
+    (x.q, x.v, x.a, x.tau)
 }
 
+/// [`dynamics_tests::assert_close`] for output `what` of mechanism `model`.
+#[track_caller]
 fn assert_close(what: &str, model: &str, generated: &[f64], reference: &[f64], tolerance: f64) {
-    let scale = tolerance_scale(reference);
-    let error = max_abs_diff(generated, reference);
-    assert!(
-        error <= tolerance * scale,
-        "{model}: {what}: generated {generated:?} vs reference {reference:?} (error {error:e}, allowed {:e})",
-        tolerance * scale
-    );
+    dynamics_tests::assert_close(&format!("{model}: {what}"), generated, reference, tolerance);
 }
 
 /// A mechanism without parameters or loads, for [`check_against_reference`].
@@ -70,11 +55,6 @@ fn under_test<'a>(
 
 fn flatten<const N: usize>(m: &[[f64; N]]) -> Vec<f64> {
     m.iter().flatten().copied().collect()
-}
-
-fn condition_number(m: &DMatrix<f64>) -> f64 {
-    let eigen = m.clone().symmetric_eigenvalues();
-    eigen.max() / eigen.min()
 }
 
 fn array<const N: usize>(v: &[f64]) -> [f64; N] {
