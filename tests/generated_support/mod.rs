@@ -5,6 +5,12 @@
 //! A generated function is seen as `fn(&Inputs<S>) -> Vec<S>` (matrices flattened by rows,
 //! scalars as one element), built by [`generated_functions!`] from the mechanism's type, so
 //! that one loop can check every output of every mechanism.
+//!
+//! The reference's model is whatever [`UnderTest::model`] returns. For
+//! `<M as Mechanism>::model_with_parameters` that is the code generator's resolution of the
+//! declaration (rotations, inertia forms, parameter values) handed to `ModelBuilder`, shared
+//! with the generated code; see `generated_vs_reference.rs` for what that leaves unchecked and
+//! where it is checked independently.
 
 // Each test binary uses part of this module.
 #![allow(dead_code, unused_macros)]
