@@ -9,16 +9,15 @@
 
 use dynamics_runtime::{DoubleDouble, Reference};
 use dynamics_tests::random::SplitMix;
+use dynamics_tests::{max_abs_dd, max_abs_diff_dd};
 use models::anchors::{Panda, Ur5};
 use nalgebra::DMatrix;
 
 type Dd = DoubleDouble;
 
+/// Error of an f64 result against a double-double one, relative to `1 + max |exact|`.
 fn relative(got: &[f64], exact: &[Dd]) -> f64 {
-    let scale = 1.0 + exact.iter().fold(0.0_f64, |m, x| m.max(x.to_f64().abs()));
-    got.iter().zip(exact).fold(0.0_f64, |m, (g, e)| {
-        m.max((Dd::new(*g) - *e).abs().to_f64())
-    }) / scale
+    max_abs_diff_dd(got, exact) / (1.0 + max_abs_dd(exact))
 }
 
 macro_rules! extended_precision {

@@ -10,6 +10,11 @@
 //! r × f + n about the body origin); a tree with a parameter is checked at random
 //! non-nominal values, its reference built by `model_with_parameters`. Run with
 //! `--nocapture` to see the largest errors per output.
+//!
+//! Shared by both sides: the reference's model is the one the macro emits, from the code
+//! generator's resolution of the `rpy(..)` placements and `principal(.., rotation: rpy(..))`
+//! inertias that `build.rs` writes; those forms are checked against hand formulas in
+//! `shape_inertias.rs` and `generated_vs_reference.rs` (`*_hand_built_reference`).
 
 #[macro_use]
 mod generated_support;

@@ -4,15 +4,30 @@
 //! reference within 1e-12 · (1 + max |value|) in f64; forward dynamics within
 //! 1e-12 · cond(M) · (1 + max |value|); and every output in f32 within 1e-4 (scaled
 //! likewise), against the reference at the inputs rounded to f32.
+//!
+//! What the two sides share: the reference runs on `<M as Mechanism>::model()`, which
+//! `mechanism!` emits (`dynamics-codegen/src/declare.rs`) as a `ModelBuilder` call on the
+//! numbers the code generator resolved from the declaration: the literals and constant
+//! expressions, rotations (`rpy`, `axis_angle`, matrices; entries within 1e-15 of 0 or ±1
+//! made exact), I_G from `diag`, `principal` and the shapes, the parameters' affine values,
+//! and what a URDF file says. A mistake in that resolution would reach both sides and pass
+//! here. From there on nothing is shared: the runtime merges fixed joints, normalizes axes,
+//! validates and computes the dynamics with its own algorithms. The resolution itself is
+//! checked elsewhere: against Pinocchio's numbers (`anchor_models.rs`, both front ends), the
+//! inertia forms against textbook formulas (`shape_inertias.rs`), and here, for a double
+//! pendulum, a shape and a spatial arm with quarter-turn `rpy` placements (the PUMA 560),
+//! against a reference run on a model built by hand with `ModelBuilder` from the
+//! declaration's numbers (`*_matches_a_hand_built_reference`).
 
 #[macro_use]
 mod generated_support;
 
-use dynamics_runtime::Wrench;
-use dynamics_runtime::{Mechanism, Model, Reference};
+use dynamics_runtime::{
+    BodySpec, Inertia, JointSpec, Mechanism, Model, ModelBuilder, Reference, Wrench, GROUND,
+};
+use dynamics_tests::condition_number;
 use dynamics_tests::random::SplitMix;
-use dynamics_tests::{max_abs_diff, tolerance_scale};
-use generated_support::{arr, check_against_reference, Function, Inputs, UnderTest};
+use generated_support::{arr, check_against_reference, random_inputs, Function, Inputs, UnderTest};
 use models::anchors::{DoublePendulum, Panda, Pendulum, Planar3, Ur5};
 use models::puma560::Puma560;
 use models::quadruped::Quadruped;
@@ -25,29 +40,14 @@ const STATES: usize = 40;
 
 /// A random state (q with unit quaternions for free joints, v, a, τ) for a model.
 fn random_state(model: &Model, rng: &mut SplitMix) -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>) {
-    let mut q: Vec<f64> = (0..model.nq()).map(|_| rng.uniform(-3.0, 3.0)).collect();
-    for body in model.bodies() {
-        if body.joint.kind == dynamics_runtime::JointKind::FreeFlyer {
-            let k = body.joint.idx_q + 3;
-            let norm = q[k..k + 4].iter().map(|x| x * x).sum::<f64>().sqrt();
-            q[k..k + 4].iter_mut().for_each(|x| *x /= norm);
-        }
-    }
-    let mut vector = |lo: f64, hi: f64| (0..model.nv()).map(|_| rng.uniform(lo, hi)).collect();
-    let v = vector(-2.0, 2.0);
-    let a = vector(-3.0, 3.0);
-    let tau = vector(-5.0, 5.0);
-    (q, v, a, tau)
+    let x = random_inputs(model, &[], 0, rng);
+    (x.q, x.v, x.a, x.tau)
 }
 
+/// [`dynamics_tests::assert_close`] for output `what` of mechanism `model`.
+#[track_caller]
 fn assert_close(what: &str, model: &str, generated: &[f64], reference: &[f64], tolerance: f64) {
-    let scale = tolerance_scale(reference);
-    let error = max_abs_diff(generated, reference);
-    assert!(
-        error <= tolerance * scale,
-        "{model}: {what}: generated {generated:?} vs reference {reference:?} (error {error:e}, allowed {:e})",
-        tolerance * scale
-    );
+    dynamics_tests::assert_close(&format!("{model}: {what}"), generated, reference, tolerance);
 }
 
 /// A mechanism without parameters or loads, for [`check_against_reference`].
@@ -70,11 +70,6 @@ fn under_test<'a>(
 
 fn flatten<const N: usize>(m: &[[f64; N]]) -> Vec<f64> {
     m.iter().flatten().copied().collect()
-}
-
-fn condition_number(m: &DMatrix<f64>) -> f64 {
-    let eigen = m.clone().symmetric_eigenvalues();
-    eigen.max() / eigen.min()
 }
 
 fn array<const N: usize>(v: &[f64]) -> [f64; N] {
@@ -362,4 +357,130 @@ fn quadruped_every_output_with_foot_forces() {
         )
     };
     check_against_reference(&outputs, STATES, 17).print("Quadruped");
+}
+
+/// Diagonal I_G.
+fn diag(d: [f64; 3]) -> [[f64; 3]; 3] {
+    [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]]
+}
+
+/// A body for [`ModelBuilder`] from its declared numbers.
+fn body(name: &str, mass: f64, com: [f64; 3], inertia: [[f64; 3]; 3]) -> BodySpec {
+    BodySpec::new(name, Inertia::new(mass, com, inertia))
+}
+
+/// Checks every output `$m` generates against the reference run on `$model`, a model built
+/// by hand with [`ModelBuilder`] from the declaration's numbers: nothing of the code
+/// generator's resolution reaches the reference (see the module docs).
+macro_rules! matches_a_hand_built_reference {
+    ($m:ty, $model:expr, $seed:expr) => {{
+        let name = <$m as Mechanism>::NAME;
+        let model: Model = $model
+            .build()
+            .unwrap_or_else(|e| panic!("{name}: the hand-built model: {e}"));
+        assert_eq!(model.nq(), <$m as Mechanism>::NQ, "{name}: nq");
+        assert_eq!(model.nv(), <$m as Mechanism>::NV, "{name}: nv");
+        let outputs = under_test(
+            name,
+            &model,
+            generated_functions!(f64, $m, p: no, loads: no),
+            generated_functions!(f32, $m, p: no, loads: no),
+        );
+        check_against_reference(&outputs, STATES, $seed).print(name);
+    }};
+}
+
+#[test]
+fn double_pendulum_matches_a_hand_built_reference() {
+    // models/src/anchors.rs: two uniform rods hanging along −y, 1.5 kg / 0.5 m and
+    // 1.0 kg / 0.4 m, I_G = m L²/12 about x and z, the elbow at the upper rod's tip.
+    let rod = |m: f64, l: f64| diag([m * l * l / 12.0, 0.0, m * l * l / 12.0]);
+    let model = ModelBuilder::new()
+        .gravity([0.0, -9.81, 0.0])
+        .body(body("upper_rod", 1.5, [0.0, -0.25, 0.0], rod(1.5, 0.5)))
+        .body(body("lower_rod", 1.0, [0.0, -0.2, 0.0], rod(1.0, 0.4)))
+        .joint(JointSpec::revolute(
+            "joint1",
+            GROUND,
+            "upper_rod",
+            [0.0, 0.0, 1.0],
+        ))
+        .joint(
+            JointSpec::revolute("joint2", "upper_rod", "lower_rod", [0.0, 0.0, 1.0])
+                .at([0.0, -0.5, 0.0]),
+        );
+    matches_a_hand_built_reference!(DoublePendulum, model, 0x4a4d);
+}
+
+#[test]
+fn falling_rod_shape_matches_a_hand_built_reference() {
+    // models/src/seed.rs: `shape: rod(length: 0.6, axis: y)` of 2 kg is I_G = m L²/12 about
+    // x and z, nothing about y.
+    let (m, l) = (2.0, 0.6);
+    let model = ModelBuilder::new()
+        .gravity([0.0, -9.81, 0.0])
+        .body(body(
+            "rod",
+            m,
+            [0.0, -0.3, 0.0],
+            diag([m * l * l / 12.0, 0.0, m * l * l / 12.0]),
+        ))
+        .joint(JointSpec::revolute("pivot", GROUND, "rod", [0.0, 0.0, 1.0]));
+    matches_a_hand_built_reference!(FallingRod, model, 0x20d);
+}
+
+#[test]
+fn puma560_matches_a_hand_built_reference() {
+    // models/src/puma560.rs: modified DH, `rotation: rpy(α, 0, 0)` with α = ±π/2 is the
+    // quarter turn about x written out here, Rx(α) = [[1, 0, 0], [0, cos α, −sin α],
+    // [0, sin α, cos α]].
+    let rx_minus = [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]];
+    let rx_plus = [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]];
+    let z = [0.0, 0.0, 1.0];
+    let model = ModelBuilder::new()
+        .gravity([0.0, 0.0, -9.81])
+        .skip_triangle_inequality()
+        .body(body("link1", 0.0, [0.0; 3], diag([0.0, 0.0, 0.35])))
+        .body(body(
+            "link2",
+            17.4,
+            [0.068, 0.006, -0.016],
+            diag([0.13, 0.524, 0.539]),
+        ))
+        .body(body(
+            "link3",
+            4.8,
+            [0.0, -0.070, 0.014],
+            diag([0.066, 0.0125, 0.066]),
+        ))
+        .body(body(
+            "link4",
+            0.82,
+            [0.0, 0.0, -0.019],
+            diag([1.8e-3, 1.8e-3, 1.3e-3]),
+        ))
+        .body(body(
+            "link5",
+            0.34,
+            [0.0; 3],
+            diag([0.3e-3, 0.3e-3, 0.4e-3]),
+        ))
+        .body(body(
+            "link6",
+            0.09,
+            [0.0, 0.0, 0.032],
+            diag([0.15e-3, 0.15e-3, 0.04e-3]),
+        ))
+        .joint(JointSpec::revolute("joint1", GROUND, "link1", z))
+        .joint(
+            JointSpec::revolute("joint2", "link1", "link2", z).placed([0.0, 0.2435, 0.0], rx_minus),
+        )
+        .joint(JointSpec::revolute("joint3", "link2", "link3", z).at([0.4318, 0.0, -0.0934]))
+        .joint(
+            JointSpec::revolute("joint4", "link3", "link4", z)
+                .placed([-0.0203, -0.4331, 0.0], rx_plus),
+        )
+        .joint(JointSpec::revolute("joint5", "link4", "link5", z).placed([0.0; 3], rx_minus))
+        .joint(JointSpec::revolute("joint6", "link5", "link6", z).placed([0.0; 3], rx_plus));
+    matches_a_hand_built_reference!(Puma560, model, 0x560);
 }

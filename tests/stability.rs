@@ -5,6 +5,7 @@
 
 use dynamics_runtime::{mechanism, DoubleDouble, Mechanism, Reference};
 use dynamics_tests::random::SplitMix;
+use dynamics_tests::{condition_number, max_abs_dd, max_abs_diff_dd};
 use models::anchors::Ur5;
 use nalgebra::DMatrix;
 
@@ -30,15 +31,7 @@ type Dd = DoubleDouble;
 
 /// Relative error of an f64 result against a double-double one.
 fn relative_error(got: &[f64], exact: &[Dd]) -> f64 {
-    let scale = exact.iter().fold(0.0_f64, |m, x| m.max(x.to_f64().abs()));
-    got.iter().zip(exact).fold(0.0_f64, |m, (g, e)| {
-        m.max((Dd::new(*g) - *e).abs().to_f64())
-    }) / scale
-}
-
-fn condition_number(m: DMatrix<f64>) -> f64 {
-    let eigen = m.symmetric_eigenvalues();
-    eigen.max() / eigen.min()
+    max_abs_diff_dd(got, exact) / max_abs_dd(exact)
 }
 
 #[test]
@@ -66,7 +59,7 @@ fn mass_matrix_spanning_eight_orders_both_methods_hold() {
                 &mut exact,
             )
             .expect("sizes");
-        let cond = condition_number(DMatrix::from_fn(5, 5, |i, j| {
+        let cond = condition_number(&DMatrix::from_fn(5, 5, |i, j| {
             GradedChain::mass_matrix(&q)[i][j]
         }));
         worst_cond = worst_cond.max(cond);
@@ -129,7 +122,7 @@ fn arm_at_a_wrist_singularity_keeps_full_accuracy() {
             )
             .expect("sizes");
         let error = relative_error(&Ur5::forward_dynamics(&q, &v, &tau), &exact);
-        let cond = condition_number(DMatrix::from_fn(6, 6, |i, j| Ur5::mass_matrix(&q)[i][j]));
+        let cond = condition_number(&DMatrix::from_fn(6, 6, |i, j| Ur5::mass_matrix(&q)[i][j]));
         println!(
             "UR5 at q5 = {q5:e}: cond(M) {cond:.1e}, forward dynamics relative error {error:.1e}"
         );

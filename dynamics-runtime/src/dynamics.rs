@@ -281,28 +281,92 @@ mod tests {
         assert_eq!(out, [1.05, 1.9, 3.2]);
     }
 
+    use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+
+    /// The quaternion of a configuration, `[x, y, z, w]` from index `at`.
+    fn quaternion(q: &[f64], at: usize) -> UnitQuaternion<f64> {
+        UnitQuaternion::new_unchecked(Quaternion::new(q[at + 3], q[at], q[at + 1], q[at + 2]))
+    }
+
+    /// exp(ω t / 2) = (sin(|ω| t / 2) ω/|ω|, cos(|ω| t / 2)): a turn by |ω| t about ω.
+    fn exp_half(omega: Vector3<f64>, t: f64) -> UnitQuaternion<f64> {
+        let half = omega.norm() * t / 2.0;
+        let u = omega.normalize() * half.sin();
+        UnitQuaternion::new_unchecked(Quaternion::new(half.cos(), u.x, u.y, u.z))
+    }
+
+    /// ∫₀ᵀ exp([ω]× t) dt = T·1 + (1 − cos θ)/|ω|² [ω]× + (θ − sin θ)/|ω|³ [ω]×², θ = |ω| T:
+    /// the displacement, in the initial body frame, of a body moving with constant body
+    /// velocity v and angular velocity ω for a time T is this times v.
+    fn turning_displacement(omega: Vector3<f64>, v: Vector3<f64>, t: f64) -> Vector3<f64> {
+        let w = omega.norm();
+        let theta = w * t;
+        let k = omega.cross_matrix();
+        (nalgebra::Matrix3::identity() * t
+            + k * ((1.0 - theta.cos()) / (w * w))
+            + k * k * ((theta - theta.sin()) / (w * w * w)))
+            * v
+    }
+
     #[test]
-    fn free_joint_turns_on_the_manifold() {
-        // Spin about z at 1 rad/s for 1000 steps of 1 ms: the quaternion stays unit and the
-        // angle reached is 1 rad to second order per step.
-        let mut q: [f64; 8] = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.3];
-        let v: [f64; 7] = [1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+    fn free_joint_moves_as_the_closed_form_of_a_constant_twist() {
+        // A free joint turned away from the identity, then a joint coordinate; constant
+        // body twist (v, ω) and joint rate 0.5 for 1000 steps of 1 ms (T = 1 s).
+        let start = UnitQuaternion::from_scaled_axis(Vector3::new(0.4, -0.9, 0.3));
+        let p0 = Vector3::new(0.2, -0.1, 1.5);
+        let mut q = [0.0_f64; 8];
+        q[..3].copy_from_slice(p0.as_slice());
+        q[3..7].copy_from_slice(start.coords.as_slice());
+        q[7] = 0.3;
+        let v_lin = Vector3::new(1.0, -0.5, 0.25);
+        let omega = Vector3::new(0.6, -1.2, 0.9);
+        let rate = 0.5;
+        let mut v = [0.0_f64; 7];
+        v[..3].copy_from_slice(v_lin.as_slice());
+        v[3..6].copy_from_slice(omega.as_slice());
+        v[6] = rate;
+        let (dt, steps) = (1e-3, 1000);
+        let t = dt * steps as f64;
+
+        // One step: the documented Cayley map turns by 2 atan(|ω| dt / 2) about ω, which is
+        // exp(ω dt / 2) to within (|ω| dt)³ / 12 in angle; the origin moves by R(q) v dt.
         let mut out = q;
-        for _ in 0..1000 {
-            integrate_configuration(&q, &v, 1e-3, &[(0, 0)], &mut out);
+        integrate_configuration(&q, &v, dt, &[(0, 0)], &mut out);
+        let one_step = quaternion(&out, 3).angle_to(&(start * exp_half(omega, dt)));
+        let cayley_bound = (omega.norm() * dt).powi(3) / 12.0;
+        assert!(
+            one_step <= cayley_bound * 1.01 + 1e-15,
+            "{one_step:e} > {cayley_bound:e}"
+        );
+        let moved = Vector3::new(out[0], out[1], out[2]) - p0;
+        let expected = start * v_lin * dt;
+        assert!((moved - expected).amax() <= 1e-15, "{moved} vs {expected}");
+        assert!((out[7] - (0.3 + rate * dt)).abs() <= 1e-15, "{}", out[7]);
+
+        for _ in 0..steps {
+            integrate_configuration(&q, &v, dt, &[(0, 0)], &mut out);
             q = out;
         }
-        let norm = (q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6]).sqrt();
-        assert!((norm - 1.0).abs() < 1e-15, "{norm}");
-        let angle = 2.0 * q[5].atan2(q[6]);
-        assert!((angle - 1.0).abs() < 1e-6, "{angle}");
-        // Moving along body x while turning: the origin traces the unit circle's arc.
+        // Orientation: q0 ⊗ exp(ω T / 2); the per-step Cayley errors add up along the one
+        // axis, to steps · (|ω| dt)³ / 12 = 3.1e-7 rad, against a turn of 1.6 rad.
+        let turned = quaternion(&q, 3);
+        let norm = turned.coords.norm();
+        assert!((norm - 1.0).abs() < 1e-15, "unit norm drifted to {norm}");
+        let angle_error = turned.angle_to(&(start * exp_half(omega, t)));
+        let bound = steps as f64 * cayley_bound;
+        assert!(angle_error <= bound * 1.01, "{angle_error:e} > {bound:e}");
+        // Position: p0 + R0 ∫ exp([ω]× t) dt v; the step is first order (the origin moves
+        // along R at the start of each step), its error at most |ω| |v| T dt / 2.
+        let position = Vector3::new(q[0], q[1], q[2]);
+        let exact = p0 + start * turning_displacement(omega, v_lin, t);
+        let position_bound = omega.norm() * v_lin.norm() * t * dt / 2.0;
+        let position_error = (position - exact).norm();
         assert!(
-            (q[0] - 1.0_f64.sin()).abs() < 1e-3 && (q[1] - (1.0 - 1.0_f64.cos())).abs() < 1e-3,
-            "{q:?}"
+            position_error <= position_bound,
+            "{position} vs {exact}: {position_error:e} > {position_bound:e}"
         );
-        // The coordinate after the free joint advanced by v dt.
-        assert!((q[7] - 0.3).abs() < 1e-15);
+        // The joint coordinate after the free joint: 0.3 + 0.5 T.
+        assert!((q[7] - (0.3 + rate * t)).abs() < 1e-12, "{}", q[7]);
     }
 
     #[test]

@@ -1,10 +1,14 @@
 //! Shared helpers of the integration tests: the Pinocchio anchor files, random mechanisms
 //! and states for the property tests, and comparisons.
 
-use dynamics_runtime::{BodySpec, Inertia, JointKind, JointSpec, Model, ModelBuilder, GROUND};
-use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+use dynamics_runtime::{
+    BodySpec, DoubleDouble, Inertia, JointKind, JointSpec, Model, ModelBuilder, GROUND,
+};
+use nalgebra::{DMatrix, Matrix3, Rotation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 use serde::Deserialize;
+
+mod split_mix;
 
 /// `1 + max |x|` over the values: the scale of the anchors' tolerance
 /// `1e-11 · (1 + max |value|)`.
@@ -20,6 +24,42 @@ pub fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
     a.iter()
         .zip(b)
         .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
+}
+
+/// Asserts `max |got − expected| ≤ tolerance · (1 + max |expected|)` (and equal lengths),
+/// naming the quantity and showing both sides when it fails.
+#[track_caller]
+pub fn assert_close(what: &str, got: &[f64], expected: &[f64], tolerance: f64) {
+    let error = max_abs_diff(got, expected);
+    let allowed = tolerance * tolerance_scale(expected);
+    assert!(
+        error <= allowed,
+        "{what}: error {error:e} > allowed {allowed:e} = {tolerance:e} · (1 + max |expected|)\n  \
+         got      {got:?}\n  expected {expected:?}"
+    );
+}
+
+/// The 2-norm condition number `λ_max / λ_min` of a symmetric positive-definite matrix
+/// (a mass matrix).
+pub fn condition_number(m: &DMatrix<f64>) -> f64 {
+    let eigen = m.clone().symmetric_eigenvalues();
+    eigen.max() / eigen.min()
+}
+
+/// `max |got_k − exact_k|`, the differences taken in double-double (infinite if the lengths
+/// differ).
+pub fn max_abs_diff_dd(got: &[f64], exact: &[DoubleDouble]) -> f64 {
+    if got.len() != exact.len() {
+        return f64::INFINITY;
+    }
+    got.iter().zip(exact).fold(0.0_f64, |m, (g, e)| {
+        m.max((DoubleDouble::new(*g) - *e).abs().to_f64())
+    })
+}
+
+/// `max |x|` of double-double values, rounded to f64.
+pub fn max_abs_dd(values: &[DoubleDouble]) -> f64 {
+    values.iter().fold(0.0_f64, |m, x| m.max(x.to_f64().abs()))
 }
 
 /// The Pinocchio anchor files: models and sampled results (see
@@ -182,27 +222,7 @@ pub mod anchors {
 pub mod random {
     use super::*;
 
-    /// A small deterministic generator (SplitMix64), for states whose size depends on the
-    /// random model.
-    #[derive(Clone, Debug)]
-    pub struct SplitMix(pub u64);
-
-    impl SplitMix {
-        /// Next 64 random bits.
-        pub fn next_u64(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^ (z >> 31)
-        }
-
-        /// Uniform in `[lo, hi)`.
-        pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-            let unit = (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-            lo + (hi - lo) * unit
-        }
-    }
+    pub use crate::split_mix::SplitMix;
 
     /// One random joint and the body it moves.
     #[derive(Clone, Debug)]
