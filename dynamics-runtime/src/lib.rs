@@ -30,7 +30,9 @@ mod scalar;
 mod statics;
 
 pub use double_double::DoubleDouble;
-pub use dynamics::{integrate_configuration, Dynamics, Energy, Lagrangian};
+pub use dynamics::{
+    integrate_configuration, try_integrate_configuration, Dynamics, Energy, Lagrangian, LayoutError,
+};
 pub use dynamics_macros::mechanism;
 pub use mechanism::{FunctionCost, Mechanism};
 pub use model::{

@@ -252,6 +252,10 @@ pub struct Body {
 }
 
 /// The ways to give I_G, the inertia about the mass centre in the body frame.
+// With proc-macro2's `span-locations` (the command-line tool's line and column) a span
+// carries its position, and this enum's largest variant crosses clippy's size threshold;
+// it is built once per declaration, so its size does not matter.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug)]
 pub enum InertiaForm {
     /// `inertia: [[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]]`.
@@ -322,6 +326,7 @@ pub struct Axis {
 }
 
 /// The ways to give a rotation.
+#[allow(clippy::large_enum_variant)] // as InertiaForm
 #[derive(Clone, Debug)]
 pub enum Rotation {
     /// `rpy(roll, pitch, yaw)`: R = Rz(yaw) Ry(pitch) Rx(roll), as in URDF.
