@@ -8,6 +8,13 @@
 //! Numbers the user wrote are printed as written (Rust's shortest round-trip form); numbers
 //! a rule computed (principal moments, determinants, sums) with six significant digits, by
 //! [`computed`], so that rounding noise such as `0.30000000000000004` does not show.
+//!
+//! The compiler is the strict judge of the inertia and rotation rules: the runtime's
+//! `ModelBuilder` checks them again with nalgebra's eigenvalue solver, which differs from
+//! [`linear::symmetric_eigenvalues`] by a few ulps, and so rejects only beyond these
+//! tolerances plus a margin above that disagreement (see `dynamics-runtime`'s
+//! `model::rules`), so the generated `model()` never rejects what compiled here.
+//! `tests/rule_agreement.rs` checks it on matrices bisected onto the edges.
 
 use super::linear::{self, Matrix3};
 use super::resolved::{Resolved, ResolvedBody, ResolvedJoint};
@@ -335,9 +342,12 @@ fn inertia_is_positive(body: &ResolvedBody, inertia: &Matrix3, d: &mut Diagnosti
 
 /// Rule: the principal moments satisfy I1 + I2 ≥ I3, as every real mass distribution does
 /// (I1 + I2 − I3 = 2∫z² dm in principal axes). Waived by `allow: [triangle_inequality]`.
+/// Checked wherever the positivity rule passes (a tiny negative moment within its tolerance
+/// included), so that the runtime, which skips it near that edge, never judges alone.
 fn inertia_satisfies_triangle(body: &ResolvedBody, inertia: &Matrix3, d: &mut Diagnostics) {
     let p = principal_moments(inertia);
-    if p[0] >= 0.0 && p[0] + p[1] < p[2] - INERTIA_TOLERANCE * (p[0] + p[1] + p[2]) {
+    let positive = p[0] >= -INERTIA_TOLERANCE * p[2].abs().max(f64::MIN_POSITIVE);
+    if positive && p[0] + p[1] < p[2] - INERTIA_TOLERANCE * (p[0] + p[1] + p[2]) {
         d.error(
             body.inertia_span,
             format!(
