@@ -388,3 +388,57 @@ fn an_unknown_output_suggests_the_closest_name() {
     );
     assert_eq!(super::rules::closest("wheel", &["body", "joint"]), None);
 }
+
+/// Issue item 2: every number of the declaration is finite, load and constraint points
+/// included (they bypassed the rule; a roller at a NaN point made the residual NaN).
+#[test]
+fn load_and_constraint_points_must_be_finite() {
+    let e = errors(quote! {
+        struct P;
+        body b { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+        joint j: revolute(ground -> b) { axis: z }
+        load l: force on b at [1e400, 0.0 / 0.0, 0.0];
+    });
+    assert_eq!(
+        e,
+        [
+            "this number evaluates to inf; every number must be finite",
+            "this number evaluates to NaN; every number must be finite"
+        ]
+    );
+    let e = errors(quote! {
+        struct P;
+        body a { mass: 1.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }
+        joint pin: revolute(ground -> a) { axis: z }
+        constraint rest: roller(ground at [1.0, 0.0, 0.0], a at [0.0 / 0.0, 0.0, 0.0]) { normal: y };
+    });
+    assert_eq!(
+        e,
+        ["this number evaluates to NaN; every number must be finite"]
+    );
+}
+
+/// Issue item 9: a parameter used only in a load point is used; one not declared is
+/// reported once, as not declared.
+#[test]
+fn a_parameter_in_a_load_point_is_a_use() {
+    let e = errors(quote! {
+        struct P;
+        parameters: [reach = 0.5];
+        body b { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+        joint j: revolute(ground -> b) { axis: z }
+        load l: force on b at [reach, 0.0, 0.0];
+    });
+    assert!(e.is_empty(), "{e:?}");
+    let e = errors(quote! {
+        struct P;
+        body b { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+        joint j: revolute(ground -> b) { axis: z }
+        load l: force on b at [reach, 0.0, 0.0];
+    });
+    assert_eq!(e.len(), 1, "{e:?}");
+    assert!(
+        e[0].starts_with("`reach` is not a declared parameter"),
+        "{e:?}"
+    );
+}
