@@ -368,8 +368,7 @@ fn inertia_satisfies_triangle(body: &ResolvedBody, inertia: &Matrix3, d: &mut Di
 /// Rule: a revolute or prismatic axis has nonzero length.
 fn axis_is_nonzero(joint: &ResolvedJoint, d: &mut Diagnostics) {
     if let Some((axis, span)) = joint.axis {
-        let norm = axis.iter().map(|a| a * a).sum::<f64>().sqrt();
-        if norm < 1e-12 {
+        if linear::norm(&axis) < 1e-12 {
             d.error(
                 span,
                 format!(

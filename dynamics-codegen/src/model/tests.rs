@@ -442,3 +442,26 @@ fn a_parameter_in_a_load_point_is_a_use() {
         "{e:?}"
     );
 }
+
+/// Issue item 8: an axis component above 1.4e154 overflowed |a|² and the axis became zero
+/// ("has no inertia"); it is normalized by its largest component first.
+#[test]
+fn a_huge_axis_is_a_unit_axis() {
+    let m = lower_tokens(quote! {
+        struct P;
+        body b { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+        joint j: revolute(ground -> b) { axis: [0.0, 1e300, 1e300] }
+    })
+    .expect("valid");
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    match m.bodies[0].joint.kind {
+        JointKind::Revolute { axis_in_joint } => {
+            assert!(
+                axis_in_joint[0] == 0.0 && (axis_in_joint[1] - h).abs() < 1e-15,
+                "{axis_in_joint:?}"
+            );
+            assert_eq!(axis_in_joint[1], axis_in_joint[2]);
+        }
+        ref other => panic!("{other:?}"),
+    }
+}

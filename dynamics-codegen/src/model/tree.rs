@@ -212,8 +212,7 @@ pub(crate) fn build(
 }
 
 fn unit(axis: [f64; 3]) -> [f64; 3] {
-    let n = axis.iter().map(|a| a * a).sum::<f64>().sqrt();
-    axis.map(|a| a / n)
+    linear::normalize(&axis)
 }
 
 /// Joint indices in depth-first order from the ground, children in declaration order.

@@ -333,7 +333,7 @@ impl ModelBuilder {
                 parent_pose.compose(&Placement::new(spec.translation, spec.rotation_rows));
             let child = index_of[spec.child.as_str()];
             let inertia = &self.bodies[child].inertia;
-            let axis = Vector3::from(spec.axis).normalize();
+            let axis = rules::unit_axis(spec.axis);
             let kind = match spec.kind {
                 JointType::Fixed => {
                     if let Some(b) = tree_parent {

@@ -161,10 +161,35 @@ pub(crate) fn joint_numbers_are_finite(joint: &JointSpec, errors: &mut Vec<Model
     }
 }
 
+/// The factor that brings an axis's largest |component| m to 1 when a square of m would
+/// overflow or underflow (m above 1e150 or below 1e-150), else 1 (ordinary axes are
+/// computed as before, bit for bit).
+fn axis_rescale(axis: [f64; 3]) -> f64 {
+    let m = axis.iter().fold(0.0_f64, |m, a| m.max(a.abs()));
+    if m.is_finite() && m > 0.0 && !(1e-150..=1e150).contains(&m) {
+        m
+    } else {
+        1.0
+    }
+}
+
+/// The length of an axis, as m·|a/m| with m from [`axis_rescale`], so that components above
+/// 1e154 (whose squares overflow) keep a finite length.
+fn axis_length(axis: [f64; 3]) -> f64 {
+    let m = axis_rescale(axis);
+    m * axis.iter().map(|a| (a / m) * (a / m)).sum::<f64>().sqrt()
+}
+
+/// An axis divided by its length, rescaled first (see [`axis_rescale`]).
+pub(crate) fn unit_axis(axis: [f64; 3]) -> nalgebra::Vector3<f64> {
+    let m = axis_rescale(axis);
+    nalgebra::Vector3::from(axis.map(|a| a / m)).normalize()
+}
+
 /// Rule: a revolute or prismatic axis has nonzero length (it is normalized afterwards).
 pub(crate) fn axis_is_nonzero(joint: &JointSpec, errors: &mut Vec<ModelError>) {
     let moving = matches!(joint.kind, JointType::Revolute | JointType::Prismatic);
-    let norm = joint.axis.iter().map(|a| a * a).sum::<f64>().sqrt();
+    let norm = axis_length(joint.axis);
     if moving && norm.is_finite() && norm < 1e-12 {
         errors.push(ModelError::ZeroAxis {
             joint: joint.name.clone(),
