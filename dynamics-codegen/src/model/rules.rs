@@ -620,13 +620,17 @@ pub(crate) struct CoordinateInertia {
     pub moment: f64,
     /// How many configurations were tried.
     pub configurations: usize,
+    /// The joint's armature (rotor inertia), added to the coordinate's diagonal entry of M.
+    pub armature: f64,
 }
 
 /// Rule: every joint coordinate has inertia: a revolute joint's subtree has a nonzero moment
 /// of inertia about the joint axis, a prismatic joint's subtree has mass, a free joint's
 /// subtree has mass and a nonsingular rotational inertia, in at least one of the
-/// configurations sampled. Otherwise M(q) is singular for every q. "Nonzero" is relative to
-/// `scale`, the size of the mechanism's inertia as a whole.
+/// configurations sampled, or the joint has armature (which adds to the coordinate's own
+/// entries of M, so M = [armature] for a massless slider is not singular). Otherwise M(q) is
+/// singular for every q. "Nonzero" is relative to `scale`, the size of the mechanism's
+/// inertia as a whole.
 pub(crate) fn coordinate_has_inertia(
     joint: &Name,
     kind: &super::JointKind,
@@ -648,6 +652,9 @@ pub(crate) fn coordinate_has_inertia(
             )
         }
     };
+    if !negligible(measured.armature) {
+        return;
+    }
     let mass = computed(measured.mass);
     let (what, hint) = match kind {
         Revolute { .. } if negligible(measured.moment) => (

@@ -465,3 +465,14 @@ fn a_huge_axis_is_a_unit_axis() {
         ref other => panic!("{other:?}"),
     }
 }
+
+/// Issue item 9: armature is inertia of the coordinate, M = [armature] for a massless slider.
+#[test]
+fn armature_gives_a_coordinate_inertia() {
+    let e = errors(quote! {
+        struct S;
+        body carriage { mass: 0.0, shape: point }
+        joint slide: prismatic(ground -> carriage) { axis: x, armature: 0.5 }
+    });
+    assert!(e.is_empty(), "{e:?}");
+}

@@ -305,6 +305,7 @@ fn check_coordinates_have_inertia(
             mass: 0.0,
             moment: 0.0,
             configurations: configurations.len(),
+            armature: 0.0,
         })
         .collect();
     let mut scale = 0.0;
@@ -358,7 +359,8 @@ fn check_coordinates_have_inertia(
             measured[j].moment = measured[j].moment.max(moment);
         }
     }
-    for (body, measured) in bodies.iter().zip(&measured) {
+    for (body, measured) in bodies.iter().zip(&mut measured) {
+        measured.armature = body.joint.armature.nominal(p);
         let joint = resolved
             .joints
             .iter()

@@ -476,3 +476,18 @@ fn a_huge_axis_is_a_unit_axis() {
         ref other => panic!("{other:?}"),
     }
 }
+
+/// Issue item 9: armature is inertia of the coordinate, M = [armature] for a massless slider.
+#[test]
+fn armature_gives_a_massless_subtree_inertia() {
+    ModelBuilder::new()
+        .body(BodySpec::new(
+            "carriage",
+            Inertia::new(0.0, [0.0; 3], [[0.0; 3]; 3]),
+        ))
+        .joint(
+            JointSpec::prismatic("slide", GROUND, "carriage", [1.0, 0.0, 0.0]).with_armature(0.5),
+        )
+        .build()
+        .expect("M = [0.5] is not singular");
+}
