@@ -36,6 +36,7 @@ pub(crate) fn check_all(mechanism: &syntax::Mechanism, resolved: &Resolved, d: &
     let p = resolved.nominal_parameters();
     parameters_are_used(mechanism, resolved, d);
     names_are_unique(mechanism, d);
+    constraint_names_are_unique(mechanism, d);
     for body in &resolved.bodies {
         let inertia = nominal33(&body.inertia, &p);
         mass_is_not_negative(body, &p, d);
@@ -277,6 +278,35 @@ fn names_are_unique(mechanism: &syntax::Mechanism, d: &mut Diagnostics) {
             } else {
                 seen.insert(&name.text, name);
             }
+        }
+    }
+}
+
+/// Rule: a constraint's name differs from every joint's and every other constraint's: the
+/// force analysis names its unknowns after them (`pin.x`), so two alike would name two
+/// different reactions the same.
+fn constraint_names_are_unique(mechanism: &syntax::Mechanism, d: &mut Diagnostics) {
+    let mut seen: HashMap<&str, (&str, &Name)> = mechanism
+        .joints
+        .iter()
+        .map(|j| (j.name.text.as_str(), ("joint", &j.name)))
+        .collect();
+    for constraint in &mechanism.constraints {
+        let name = &constraint.name;
+        if let Some((kind, first)) = seen.get(name.text.as_str()) {
+            d.error(
+                name.span,
+                format!(
+                    "a {kind} named `{}` is already declared; a constraint needs a name of its own                      (its reactions are named after it, like a joint's)",
+                    name.text
+                ),
+            );
+            d.error(
+                first.span,
+                format!("{kind} `{}` is first declared here", name.text),
+            );
+        } else {
+            seen.insert(&name.text, ("constraint", name));
         }
     }
 }

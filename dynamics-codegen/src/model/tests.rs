@@ -476,3 +476,36 @@ fn armature_gives_a_coordinate_inertia() {
     });
     assert!(e.is_empty(), "{e:?}");
 }
+
+/// Issue item 9: the force analysis names unknowns after joints and constraints (`A.x`), so
+/// a constraint named like a joint or another constraint is an error at its name.
+#[test]
+fn constraint_names_collide_with_no_joint_or_constraint() {
+    let e = errors(quote! {
+        struct P;
+        body a { mass: 1.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }
+        joint A: revolute(ground -> a) { axis: z }
+        constraint A: roller(ground at [1.0, 0.0, 0.0], a at [1.0, 0.0, 0.0]) { normal: y };
+    });
+    assert!(
+        e.iter()
+            .any(|m| m.starts_with("a joint named `A` is already declared")),
+        "{e:?}"
+    );
+    assert!(
+        e.iter().any(|m| m == "joint `A` is first declared here"),
+        "{e:?}"
+    );
+    let e = errors(quote! {
+        struct P;
+        body a { mass: 1.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }
+        joint pin: revolute(ground -> a) { axis: z }
+        constraint B: roller(ground at [1.0, 0.0, 0.0], a at [1.0, 0.0, 0.0]) { normal: y };
+        constraint B: roller(ground at [1.0, 0.0, 0.0], a at [1.0, 0.0, 0.0]) { normal: x };
+    });
+    assert!(
+        e.iter()
+            .any(|m| m.starts_with("a constraint named `B` is already declared")),
+        "{e:?}"
+    );
+}
