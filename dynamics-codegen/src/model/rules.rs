@@ -35,6 +35,7 @@ pub(crate) const GROUND: &str = "ground";
 pub(crate) fn check_all(mechanism: &syntax::Mechanism, resolved: &Resolved, d: &mut Diagnostics) {
     let p = resolved.nominal_parameters();
     parameters_are_used(mechanism, resolved, d);
+    type_name_is_usable(&mechanism.name, d);
     names_are_unique(mechanism, d);
     constraint_names_are_unique(mechanism, d);
     for body in &resolved.bodies {
@@ -282,6 +283,54 @@ fn names_are_unique(mechanism: &syntax::Mechanism, d: &mut Diagnostics) {
     }
 }
 
+/// Names the generated code gives a meaning of its own: the generic scalar parameter `T`,
+/// the generated functions' argument names, and Rust's primitive types.
+const RESERVED_TYPE_NAMES: [(&str, &str); 24] = [
+    ("T", "the generated code's generic scalar type"),
+    ("q", "an argument of the generated functions"),
+    ("v", "an argument of the generated functions"),
+    ("a", "an argument of the generated functions"),
+    ("tau", "an argument of the generated functions"),
+    ("p", "an argument of the generated functions"),
+    ("loads", "an argument of the generated functions"),
+    ("bool", "a Rust primitive type"),
+    ("char", "a Rust primitive type"),
+    ("str", "a Rust primitive type"),
+    ("f32", "a Rust primitive type"),
+    ("f64", "a Rust primitive type"),
+    ("i8", "a Rust primitive type"),
+    ("i16", "a Rust primitive type"),
+    ("i32", "a Rust primitive type"),
+    ("i64", "a Rust primitive type"),
+    ("i128", "a Rust primitive type"),
+    ("isize", "a Rust primitive type"),
+    ("u8", "a Rust primitive type"),
+    ("u16", "a Rust primitive type"),
+    ("u32", "a Rust primitive type"),
+    ("u64", "a Rust primitive type"),
+    ("u128", "a Rust primitive type"),
+    ("usize", "a Rust primitive type"),
+];
+
+/// Rule: the mechanism's type name is none of [`RESERVED_TYPE_NAMES`]: a type
+/// named so shadows what the generated code means by it (a generic parameter, an argument
+/// binding, a primitive type) and breaks it with errors far from the cause.
+fn type_name_is_usable(name: &proc_macro2::Ident, d: &mut Diagnostics) {
+    let text = name.to_string();
+    let reserved = RESERVED_TYPE_NAMES
+        .iter()
+        .find(|(reserved, _)| *reserved == text);
+    if let Some((_, meaning)) = reserved {
+        d.error(
+            SpanRange::from(name.span()),
+            format!(
+                "the mechanism's type cannot be named `{text}`: in the generated code `{text}` is \
+                 {meaning}; choose another name, in UpperCamelCase such as `Pendulum`"
+            ),
+        );
+    }
+}
+
 /// Rule: a constraint's name differs from every joint's and every other constraint's: the
 /// force analysis names its unknowns after them (`pin.x`), so two alike would name two
 /// different reactions the same.
@@ -297,7 +346,8 @@ fn constraint_names_are_unique(mechanism: &syntax::Mechanism, d: &mut Diagnostic
             d.error(
                 name.span,
                 format!(
-                    "a {kind} named `{}` is already declared; a constraint needs a name of its own                      (its reactions are named after it, like a joint's)",
+                    "a {kind} named `{}` is already declared; a constraint needs a name of its own \
+                     (its reactions are named after it, like a joint's)",
                     name.text
                 ),
             );

@@ -509,3 +509,24 @@ fn constraint_names_collide_with_no_joint_or_constraint() {
         "{e:?}"
     );
 }
+
+/// Issue item 11: a type named like the generic parameter, an argument of the generated
+/// functions or a primitive type broke the generated code; it is an error at the name.
+#[test]
+fn reserved_type_names_are_errors_at_the_name() {
+    for name in [
+        "T", "q", "v", "a", "tau", "p", "loads", "f64", "u8", "bool", "usize",
+    ] {
+        let name = proc_macro2::Ident::new(name, proc_macro2::Span::call_site());
+        let e = errors(quote! {
+            struct #name;
+            body b { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+            joint j: revolute(ground -> b) { axis: z }
+        });
+        assert_eq!(e.len(), 1, "{e:?}");
+        assert!(
+            e[0].starts_with(&format!("the mechanism's type cannot be named `{name}`")),
+            "{e:?}"
+        );
+    }
+}
