@@ -28,15 +28,32 @@ pub(crate) fn norm_squared(v: &Vector3) -> f64 {
     dot(v, v)
 }
 
-/// |v|.
-pub(crate) fn norm(v: &Vector3) -> f64 {
-    norm_squared(v).sqrt()
+/// The factor that brings v's largest |component| m to 1 when a square of m would overflow
+/// or underflow (m above 1e150 or below 1e-150), else 1, so that ordinary vectors are
+/// computed as before, bit for bit.
+fn rescale(v: &Vector3) -> f64 {
+    let m = v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    if m.is_finite() && m > 0.0 && !(1e-150..=1e150).contains(&m) {
+        m
+    } else {
+        1.0
+    }
 }
 
-/// v / |v| (not finite for v = 0: callers check the norm first).
+/// |v|, as m·|v/m| when v's components are so large (above 1e154) or small that their
+/// squares would overflow or underflow (see [`rescale`]).
+pub(crate) fn norm(v: &Vector3) -> f64 {
+    let m = rescale(v);
+    m * norm_squared(&v.map(|x| x / m)).sqrt()
+}
+
+/// v / |v| (not finite for v = 0: callers check the norm first), rescaled first when a
+/// square would overflow or underflow (see [`rescale`]).
 pub(crate) fn normalize(v: &Vector3) -> Vector3 {
-    let n = norm(v);
-    v.map(|x| x / n)
+    let m = rescale(v);
+    let scaled = v.map(|x| x / m);
+    let n = norm_squared(&scaled).sqrt();
+    scaled.map(|x| x / n)
 }
 
 /// `a + b`.

@@ -56,6 +56,19 @@ impl Resolver<'_> {
         }
     }
 
+    /// A number that must be a constant, where another stage reports a parameter: checked
+    /// finite, a parameter counted as used (so it is not also reported as unused).
+    fn constant_checked_elsewhere(&mut self, number: &Number) {
+        match &number.value {
+            NumberValue::Constant(c) => rules::number_is_finite(*c, number.span, self.diagnostics),
+            NumberValue::Parameter { name, .. } => {
+                if let Some(k) = self.names.iter().position(|n| n == name) {
+                    self.used[k] = true;
+                }
+            }
+        }
+    }
+
     fn vector(&mut self, v: &syntax::Vector) -> Vec3 {
         std::array::from_fn(|i| self.value(&v.components[i]))
     }
@@ -247,6 +260,21 @@ pub(crate) fn resolve(mechanism: &syntax::Mechanism, diagnostics: &mut Diagnosti
         .iter()
         .map(|j| resolve_joint(&mut r, j))
         .collect();
+    // Load points take parameters; constraint points and directions are constants, which the
+    // force analysis checks, so here they are checked finite and their parameters counted used.
+    let load_points = mechanism
+        .loads
+        .iter()
+        .map(|load| load.at.as_ref().map(|v| r.vector(v)))
+        .collect();
+    for constraint in &mechanism.constraints {
+        let points = [&constraint.first, &constraint.second]
+            .into_iter()
+            .filter_map(|end| end.at.as_ref());
+        for number in points.flat_map(|v| v.components.iter()) {
+            r.constant_checked_elsewhere(number);
+        }
+    }
     let mut outputs = resolve_outputs(
         &mechanism.outputs,
         !mechanism.constraints.is_empty(),
@@ -274,6 +302,7 @@ pub(crate) fn resolve(mechanism: &syntax::Mechanism, diagnostics: &mut Diagnosti
         outputs,
         skip_triangle_inequality,
         gravity,
+        load_points,
     }
 }
 

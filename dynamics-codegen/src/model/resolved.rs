@@ -42,6 +42,8 @@ pub(crate) struct Resolved {
     pub outputs: Outputs,
     pub skip_triangle_inequality: bool,
     pub gravity: [f64; 3],
+    /// Each load's point of application, in declaration order (`None`: the origin).
+    pub load_points: Vec<Option<Vec3>>,
 }
 
 impl Resolved {

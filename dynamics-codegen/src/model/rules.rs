@@ -8,6 +8,13 @@
 //! Numbers the user wrote are printed as written (Rust's shortest round-trip form); numbers
 //! a rule computed (principal moments, determinants, sums) with six significant digits, by
 //! [`computed`], so that rounding noise such as `0.30000000000000004` does not show.
+//!
+//! The compiler is the strict judge of the inertia and rotation rules: the runtime's
+//! `ModelBuilder` checks them again with nalgebra's eigenvalue solver, which differs from
+//! [`linear::symmetric_eigenvalues`] by a few ulps, and so rejects only beyond these
+//! tolerances plus a margin above that disagreement (see `dynamics-runtime`'s
+//! `model::rules`), so the generated `model()` never rejects what compiled here.
+//! `tests/rule_agreement.rs` checks it on matrices bisected onto the edges.
 
 use super::linear::{self, Matrix3};
 use super::resolved::{Resolved, ResolvedBody, ResolvedJoint};
@@ -28,7 +35,9 @@ pub(crate) const GROUND: &str = "ground";
 pub(crate) fn check_all(mechanism: &syntax::Mechanism, resolved: &Resolved, d: &mut Diagnostics) {
     let p = resolved.nominal_parameters();
     parameters_are_used(mechanism, resolved, d);
+    type_name_is_usable(&mechanism.name, d);
     names_are_unique(mechanism, d);
+    constraint_names_are_unique(mechanism, d);
     for body in &resolved.bodies {
         let inertia = nominal33(&body.inertia, &p);
         mass_is_not_negative(body, &p, d);
@@ -236,6 +245,84 @@ fn names_are_unique(mechanism: &syntax::Mechanism, d: &mut Diagnostics) {
     }
 }
 
+/// Names the generated code gives a meaning of its own: the generic scalar parameter `T`,
+/// the generated functions' argument names, and Rust's primitive types.
+const RESERVED_TYPE_NAMES: [(&str, &str); 24] = [
+    ("T", "the generated code's generic scalar type"),
+    ("q", "an argument of the generated functions"),
+    ("v", "an argument of the generated functions"),
+    ("a", "an argument of the generated functions"),
+    ("tau", "an argument of the generated functions"),
+    ("p", "an argument of the generated functions"),
+    ("loads", "an argument of the generated functions"),
+    ("bool", "a Rust primitive type"),
+    ("char", "a Rust primitive type"),
+    ("str", "a Rust primitive type"),
+    ("f32", "a Rust primitive type"),
+    ("f64", "a Rust primitive type"),
+    ("i8", "a Rust primitive type"),
+    ("i16", "a Rust primitive type"),
+    ("i32", "a Rust primitive type"),
+    ("i64", "a Rust primitive type"),
+    ("i128", "a Rust primitive type"),
+    ("isize", "a Rust primitive type"),
+    ("u8", "a Rust primitive type"),
+    ("u16", "a Rust primitive type"),
+    ("u32", "a Rust primitive type"),
+    ("u64", "a Rust primitive type"),
+    ("u128", "a Rust primitive type"),
+    ("usize", "a Rust primitive type"),
+];
+
+/// Rule: the mechanism's type name is none of [`RESERVED_TYPE_NAMES`]: a type
+/// named so shadows what the generated code means by it (a generic parameter, an argument
+/// binding, a primitive type) and breaks it with errors far from the cause.
+fn type_name_is_usable(name: &proc_macro2::Ident, d: &mut Diagnostics) {
+    let text = name.to_string();
+    let reserved = RESERVED_TYPE_NAMES
+        .iter()
+        .find(|(reserved, _)| *reserved == text);
+    if let Some((_, meaning)) = reserved {
+        d.error(
+            SpanRange::from(name.span()),
+            format!(
+                "the mechanism's type cannot be named `{text}`: in the generated code `{text}` is \
+                 {meaning}; choose another name, in UpperCamelCase such as `Pendulum`"
+            ),
+        );
+    }
+}
+
+/// Rule: a constraint's name differs from every joint's and every other constraint's: the
+/// force analysis names its unknowns after them (`pin.x`), so two alike would name two
+/// different reactions the same.
+fn constraint_names_are_unique(mechanism: &syntax::Mechanism, d: &mut Diagnostics) {
+    let mut seen: HashMap<&str, (&str, &Name)> = mechanism
+        .joints
+        .iter()
+        .map(|j| (j.name.text.as_str(), ("joint", &j.name)))
+        .collect();
+    for constraint in &mechanism.constraints {
+        let name = &constraint.name;
+        if let Some((kind, first)) = seen.get(name.text.as_str()) {
+            d.error(
+                name.span,
+                format!(
+                    "a {kind} named `{}` is already declared; a constraint needs a name of its own \
+                     (its reactions are named after it, like a joint's)",
+                    name.text
+                ),
+            );
+            d.error(
+                first.span,
+                format!("{kind} `{}` is first declared here", name.text),
+            );
+        } else {
+            seen.insert(&name.text, ("constraint", name));
+        }
+    }
+}
+
 /// Rule: a body's mass is not negative.
 fn mass_is_not_negative(body: &ResolvedBody, p: &[f64], d: &mut Diagnostics) {
     if body.mass.nominal(p) < 0.0 {
@@ -297,9 +384,12 @@ fn inertia_is_positive(body: &ResolvedBody, inertia: &Matrix3, d: &mut Diagnosti
 
 /// Rule: the principal moments satisfy I1 + I2 ≥ I3, as every real mass distribution does
 /// (I1 + I2 − I3 = 2∫z² dm in principal axes). Waived by `allow: [triangle_inequality]`.
+/// Checked wherever the positivity rule passes (a tiny negative moment within its tolerance
+/// included), so that the runtime, which skips it near that edge, never judges alone.
 fn inertia_satisfies_triangle(body: &ResolvedBody, inertia: &Matrix3, d: &mut Diagnostics) {
     let p = principal_moments(inertia);
-    if p[0] >= 0.0 && p[0] + p[1] < p[2] - INERTIA_TOLERANCE * (p[0] + p[1] + p[2]) {
+    let positive = p[0] >= -INERTIA_TOLERANCE * p[2].abs().max(f64::MIN_POSITIVE);
+    if positive && p[0] + p[1] < p[2] - INERTIA_TOLERANCE * (p[0] + p[1] + p[2]) {
         d.error(
             body.inertia_span,
             format!(
@@ -320,8 +410,7 @@ fn inertia_satisfies_triangle(body: &ResolvedBody, inertia: &Matrix3, d: &mut Di
 /// Rule: a revolute or prismatic axis has nonzero length.
 fn axis_is_nonzero(joint: &ResolvedJoint, d: &mut Diagnostics) {
     if let Some((axis, span)) = joint.axis {
-        let norm = axis.iter().map(|a| a * a).sum::<f64>().sqrt();
-        if norm < 1e-12 {
+        if linear::norm(&axis) < 1e-12 {
             d.error(
                 span,
                 format!(
@@ -573,13 +662,17 @@ pub(crate) struct CoordinateInertia {
     pub moment: f64,
     /// How many configurations were tried.
     pub configurations: usize,
+    /// The joint's armature (rotor inertia), added to the coordinate's diagonal entry of M.
+    pub armature: f64,
 }
 
 /// Rule: every joint coordinate has inertia: a revolute joint's subtree has a nonzero moment
 /// of inertia about the joint axis, a prismatic joint's subtree has mass, a free joint's
 /// subtree has mass and a nonsingular rotational inertia, in at least one of the
-/// configurations sampled. Otherwise M(q) is singular for every q. "Nonzero" is relative to
-/// `scale`, the size of the mechanism's inertia as a whole.
+/// configurations sampled, or the joint has armature (which adds to the coordinate's own
+/// entries of M, so M = [armature] for a massless slider is not singular). Otherwise M(q) is
+/// singular for every q. "Nonzero" is relative to `scale`, the size of the mechanism's
+/// inertia as a whole.
 pub(crate) fn coordinate_has_inertia(
     joint: &Name,
     kind: &super::JointKind,
@@ -601,6 +694,9 @@ pub(crate) fn coordinate_has_inertia(
             )
         }
     };
+    if !negligible(measured.armature) {
+        return;
+    }
     let mass = computed(measured.mass);
     let (what, hint) = match kind {
         Revolute { .. } if negligible(measured.moment) => (

@@ -456,3 +456,145 @@ fn an_unknown_output_suggests_the_closest_name() {
     );
     assert_eq!(crate::syntax::closest("wheel", &["body", "joint"]), None);
 }
+
+/// Issue item 2: every number of the declaration is finite, load and constraint points
+/// included (they bypassed the rule; a roller at a NaN point made the residual NaN).
+#[test]
+fn load_and_constraint_points_must_be_finite() {
+    let e = errors(quote! {
+        struct P;
+        body b { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+        joint j: revolute(ground -> b) { axis: z }
+        load l: force on b at [1e400, 0.0 / 0.0, 0.0];
+    });
+    assert_eq!(
+        e,
+        [
+            "this number evaluates to inf; every number must be finite",
+            "this number evaluates to NaN; every number must be finite"
+        ]
+    );
+    let e = errors(quote! {
+        struct P;
+        body a { mass: 1.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }
+        joint pin: revolute(ground -> a) { axis: z }
+        constraint rest: roller(ground at [1.0, 0.0, 0.0], a at [0.0 / 0.0, 0.0, 0.0]) { normal: y };
+    });
+    assert_eq!(
+        e,
+        ["this number evaluates to NaN; every number must be finite"]
+    );
+}
+
+/// Issue item 9: a parameter used only in a load point is used; one not declared is
+/// reported once, as not declared.
+#[test]
+fn a_parameter_in_a_load_point_is_a_use() {
+    let e = errors(quote! {
+        struct P;
+        parameters: [reach = 0.5];
+        body b { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+        joint j: revolute(ground -> b) { axis: z }
+        load l: force on b at [reach, 0.0, 0.0];
+    });
+    assert!(e.is_empty(), "{e:?}");
+    let e = errors(quote! {
+        struct P;
+        body b { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+        joint j: revolute(ground -> b) { axis: z }
+        load l: force on b at [reach, 0.0, 0.0];
+    });
+    assert_eq!(e.len(), 1, "{e:?}");
+    assert!(
+        e[0].starts_with("`reach` is not a declared parameter"),
+        "{e:?}"
+    );
+}
+
+/// Issue item 8: an axis component above 1.4e154 overflowed |a|² and the axis became zero
+/// ("has no inertia"); it is normalized by its largest component first.
+#[test]
+fn a_huge_axis_is_a_unit_axis() {
+    let m = lower_tokens(quote! {
+        struct P;
+        body b { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+        joint j: revolute(ground -> b) { axis: [0.0, 1e300, 1e300] }
+    })
+    .expect("valid");
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    match m.bodies[0].joint.kind {
+        JointKind::Revolute { axis_in_joint } => {
+            assert!(
+                axis_in_joint[0] == 0.0 && (axis_in_joint[1] - h).abs() < 1e-15,
+                "{axis_in_joint:?}"
+            );
+            assert_eq!(axis_in_joint[1], axis_in_joint[2]);
+        }
+        ref other => panic!("{other:?}"),
+    }
+}
+
+/// Issue item 9: armature is inertia of the coordinate, M = [armature] for a massless slider.
+#[test]
+fn armature_gives_a_coordinate_inertia() {
+    let e = errors(quote! {
+        struct S;
+        body carriage { mass: 0.0, shape: point }
+        joint slide: prismatic(ground -> carriage) { axis: x, armature: 0.5 }
+    });
+    assert!(e.is_empty(), "{e:?}");
+}
+
+/// Issue item 9: the force analysis names unknowns after joints and constraints (`A.x`), so
+/// a constraint named like a joint or another constraint is an error at its name.
+#[test]
+fn constraint_names_collide_with_no_joint_or_constraint() {
+    let e = errors(quote! {
+        struct P;
+        body a { mass: 1.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }
+        joint A: revolute(ground -> a) { axis: z }
+        constraint A: roller(ground at [1.0, 0.0, 0.0], a at [1.0, 0.0, 0.0]) { normal: y };
+    });
+    assert!(
+        e.iter()
+            .any(|m| m.starts_with("a joint named `A` is already declared")),
+        "{e:?}"
+    );
+    assert!(
+        e.iter().any(|m| m == "joint `A` is first declared here"),
+        "{e:?}"
+    );
+    let e = errors(quote! {
+        struct P;
+        body a { mass: 1.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }
+        joint pin: revolute(ground -> a) { axis: z }
+        constraint B: roller(ground at [1.0, 0.0, 0.0], a at [1.0, 0.0, 0.0]) { normal: y };
+        constraint B: roller(ground at [1.0, 0.0, 0.0], a at [1.0, 0.0, 0.0]) { normal: x };
+    });
+    assert!(
+        e.iter()
+            .any(|m| m.starts_with("a constraint named `B` is already declared")),
+        "{e:?}"
+    );
+}
+
+/// Issue item 11: a type named like the generic parameter, an argument of the generated
+/// functions or a primitive type broke the generated code; it is an error at the name.
+#[test]
+fn reserved_type_names_are_errors_at_the_name() {
+    for name in [
+        "T", "q", "v", "a", "tau", "p", "loads", "f64", "u8", "bool", "usize",
+    ] {
+        let name = proc_macro2::Ident::new(name, proc_macro2::Span::call_site());
+        let e = errors(quote! {
+            struct #name;
+            body b { mass: 1.0, com: [0.0, -0.5, 0.0], inertia: diag([0.01, 0.01, 0.01]) }
+            joint j: revolute(ground -> b) { axis: z }
+        });
+        assert_eq!(e.len(), 1, "{e:?}");
+        assert!(
+            e[0].starts_with(&format!("the mechanism's type cannot be named `{name}`")),
+            "{e:?}"
+        );
+    }
+}

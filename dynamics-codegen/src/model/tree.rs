@@ -137,19 +137,14 @@ pub(crate) fn build(
     }
     let mut loads = Vec::new();
     let mut offset = 0;
-    for load in &mechanism.loads {
+    for (load, point) in mechanism.loads.iter().zip(&resolved.load_points) {
         let declared = *body_index.get(load.body.text.as_str())?;
         let at = attached[declared].clone()?;
         let Some(body) = at.body else {
             d.error(load.body.span, format!("load `{}` acts on `{}`, which is welded to the ground: it does no work and enters no dynamics", load.name.text, load.body.text));
             continue;
         };
-        let point = match &load.at {
-            Some(v) => {
-                std::array::from_fn(|i| resolve_constant_or_param(&v.components[i], resolved, d))
-            }
-            None => zero3(),
-        };
+        let point = point.clone().unwrap_or_else(zero3);
         loads.push(Load {
             name: load.name.text.clone(),
             docs: load.docs.clone(),
@@ -216,29 +211,8 @@ pub(crate) fn build(
     })
 }
 
-/// A load's point: constants or parameters, resolved against the declared parameters.
-fn resolve_constant_or_param(
-    n: &syntax::Number,
-    resolved: &Resolved,
-    d: &mut Diagnostics,
-) -> Value {
-    match &n.value {
-        syntax::NumberValue::Constant(c) => Value::constant(*c),
-        syntax::NumberValue::Parameter { name, coefficient } => {
-            match resolved.parameters.iter().position(|p| &p.name == name) {
-                Some(k) => Value::parameter(k, *coefficient),
-                None => {
-                    rules::report_undeclared_parameter(name, n.span, d);
-                    Value::constant(0.0)
-                }
-            }
-        }
-    }
-}
-
 fn unit(axis: [f64; 3]) -> [f64; 3] {
-    let n = axis.iter().map(|a| a * a).sum::<f64>().sqrt();
-    axis.map(|a| a / n)
+    linear::normalize(&axis)
 }
 
 /// Joint indices in depth-first order from the ground, children in declaration order.
@@ -331,6 +305,7 @@ fn check_coordinates_have_inertia(
             mass: 0.0,
             moment: 0.0,
             configurations: configurations.len(),
+            armature: 0.0,
         })
         .collect();
     let mut scale = 0.0;
@@ -384,7 +359,8 @@ fn check_coordinates_have_inertia(
             measured[j].moment = measured[j].moment.max(moment);
         }
     }
-    for (body, measured) in bodies.iter().zip(&measured) {
+    for (body, measured) in bodies.iter().zip(&mut measured) {
+        measured.armature = body.joint.armature.nominal(p);
         let joint = resolved
             .joints
             .iter()

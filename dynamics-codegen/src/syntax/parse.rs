@@ -6,7 +6,7 @@
 
 use super::ast::*;
 use super::closest;
-use proc_macro2::Span;
+use proc_macro2::{Delimiter, Span};
 use syn::ext::IdentExt;
 use syn::parse::{Parse, ParseStream};
 use syn::punctuated::Punctuated;
@@ -274,93 +274,205 @@ fn parse_parameters(input: ParseStream) -> syn::Result<Vec<Parameter>> {
     Ok(parameters)
 }
 
+/// How deeply parentheses may nest in a number: far beyond any hand-written expression,
+/// far below what would exhaust the stack.
+const MAX_NESTING: usize = 64;
+
 /// A number: a constant expression, or a parameter scaled by a constant.
+///
+/// Parsed by hand rather than as a `syn::Expr`, whose parser and tree recurse per level
+/// and per term: sums and products are loops, a run of unary minus signs is counted, and
+/// parentheses may nest [`MAX_NESTING`] deep (deeper is an error at the parenthesis).
 pub(crate) fn parse_number(input: ParseStream) -> syn::Result<Number> {
-    let expr: Expr = input.parse()?;
-    number_from_expr(&expr)
+    let (value, span) = parse_sum(input, 0)?;
+    Ok(Number { value, span })
 }
 
-fn number_from_expr(expr: &Expr) -> syn::Result<Number> {
-    Ok(Number {
-        value: evaluate(expr)?,
-        span: SpanRange::of(expr),
-    })
+/// A binary operator of a number.
+#[derive(Clone, Copy)]
+enum Operator {
+    Add,
+    Sub,
+    Mul,
+    Div,
 }
 
-/// Evaluates a constant expression: literals, `pi`, unary minus, `+ - * /`, parentheses;
-/// an identifier is a parameter, which may only be scaled by constants.
-fn evaluate(expr: &Expr) -> syn::Result<NumberValue> {
-    use NumberValue::{Constant, Parameter};
-    let not_a_number = || {
-        syn::Error::new_spanned(
-            expr,
-            "expected a number: a literal, `pi`, a parameter, or + - * / of these",
-        )
-    };
-    match expr {
-        Expr::Lit(lit) => match &lit.lit {
-            syn::Lit::Float(f) => f.base10_parse::<f64>().map(Constant),
-            syn::Lit::Int(i) => i.base10_parse::<f64>().map(Constant),
-            _ => Err(not_a_number()),
-        },
-        Expr::Paren(p) => evaluate(&p.expr),
-        Expr::Group(g) => evaluate(&g.expr),
-        Expr::Path(path) => {
-            let ident = path.path.get_ident().ok_or_else(not_a_number)?;
-            Ok(match ident.to_string().as_str() {
-                "pi" | "PI" => Constant(std::f64::consts::PI),
-                name => Parameter {
-                    name: name.to_owned(),
-                    coefficient: 1.0,
-                },
-            })
-        }
-        Expr::Unary(u) if matches!(u.op, syn::UnOp::Neg(_)) => Ok(match evaluate(&u.expr)? {
-            Constant(c) => Constant(-c),
-            Parameter { name, coefficient } => Parameter {
+/// `term (+|- term)*`, left to right, in a loop.
+fn parse_sum(input: ParseStream, depth: usize) -> syn::Result<(NumberValue, SpanRange)> {
+    let (mut value, mut span) = parse_product(input, depth)?;
+    loop {
+        let op = if input.peek(Token![+]) && !input.peek(Token![+=]) {
+            input.parse::<Token![+]>()?;
+            Operator::Add
+        } else if input.peek(Token![-]) && !input.peek(Token![-=]) && !input.peek(Token![->]) {
+            input.parse::<Token![-]>()?;
+            Operator::Sub
+        } else {
+            return Ok((value, span));
+        };
+        let (right, right_span) = parse_product(input, depth)?;
+        span = SpanRange::new(span.first, right_span.last);
+        value = combine(op, value, right, span)?;
+    }
+}
+
+/// `factor (*|/ factor)*`, left to right, in a loop.
+fn parse_product(input: ParseStream, depth: usize) -> syn::Result<(NumberValue, SpanRange)> {
+    let (mut value, mut span) = parse_factor(input, depth)?;
+    loop {
+        let op = if input.peek(Token![*]) && !input.peek(Token![*=]) {
+            input.parse::<Token![*]>()?;
+            Operator::Mul
+        } else if input.peek(Token![/]) && !input.peek(Token![/=]) {
+            input.parse::<Token![/]>()?;
+            Operator::Div
+        } else {
+            return Ok((value, span));
+        };
+        let (right, right_span) = parse_factor(input, depth)?;
+        span = SpanRange::new(span.first, right_span.last);
+        value = combine(op, value, right, span)?;
+    }
+}
+
+/// `-`* then a literal, `pi`, a parameter or a parenthesized number; the minus signs are
+/// counted in a loop.
+fn parse_factor(input: ParseStream, depth: usize) -> syn::Result<(NumberValue, SpanRange)> {
+    let mut negations = 0_usize;
+    let mut first = None;
+    while input.peek(Token![-]) {
+        let minus = input.parse::<Token![-]>()?;
+        first.get_or_insert(minus.span);
+        negations += 1;
+    }
+    let (value, span) = parse_atom(input, depth)?;
+    let value = if negations % 2 == 1 {
+        match value {
+            NumberValue::Constant(c) => NumberValue::Constant(-c),
+            NumberValue::Parameter { name, coefficient } => NumberValue::Parameter {
                 name,
                 coefficient: -coefficient,
             },
-        }),
-        Expr::Binary(b) => {
-            let (l, r) = (evaluate(&b.left)?, evaluate(&b.right)?);
-            let only_scaled = || {
-                syn::Error::new_spanned(
-                    expr,
-                    "a parameter can only be multiplied or divided by a constant here",
-                )
-            };
-            match (&b.op, l, r) {
-                (syn::BinOp::Add(_), Constant(x), Constant(y)) => Ok(Constant(x + y)),
-                (syn::BinOp::Sub(_), Constant(x), Constant(y)) => Ok(Constant(x - y)),
-                (syn::BinOp::Mul(_), Constant(x), Constant(y)) => Ok(Constant(x * y)),
-                (syn::BinOp::Div(_), Constant(x), Constant(y)) => Ok(Constant(x / y)),
-                (syn::BinOp::Mul(_), Constant(c), Parameter { name, coefficient })
-                | (syn::BinOp::Mul(_), Parameter { name, coefficient }, Constant(c)) => {
-                    Ok(Parameter {
-                        name,
-                        coefficient: coefficient * c,
-                    })
-                }
-                (syn::BinOp::Div(_), Parameter { name, coefficient }, Constant(c)) => {
-                    Ok(Parameter {
-                        name,
-                        coefficient: coefficient / c,
-                    })
-                }
-                (
-                    syn::BinOp::Add(_)
-                    | syn::BinOp::Sub(_)
-                    | syn::BinOp::Mul(_)
-                    | syn::BinOp::Div(_),
-                    _,
-                    _,
-                ) => Err(only_scaled()),
-                _ => Err(not_a_number()),
-            }
         }
-        _ => Err(not_a_number()),
+    } else {
+        value
+    };
+    Ok((
+        value,
+        SpanRange::new(first.unwrap_or(span.first), span.last),
+    ))
+}
+
+/// A literal, `pi`, a parameter, or a number in parentheses (or in the invisible group a
+/// `macro_rules!` fragment arrives in).
+fn parse_atom(input: ParseStream, depth: usize) -> syn::Result<(NumberValue, SpanRange)> {
+    let not_a_number = |span: Span| {
+        syn::Error::new(
+            span,
+            "expected a number: a literal, `pi`, a parameter, or + - * / of these",
+        )
+    };
+    let nested = |span: Span| -> syn::Result<usize> {
+        if depth >= MAX_NESTING {
+            return Err(syn::Error::new(
+                span,
+                format!(
+                    "parentheses nest more than {MAX_NESTING} deep in this number; simplify it"
+                ),
+            ));
+        }
+        Ok(depth + 1)
+    };
+    if input.peek(syn::token::Paren) {
+        let content;
+        let paren = parenthesized!(content in input);
+        let inner = nested(paren.span.open())?;
+        let (value, _) = parse_sum(&content, inner)?;
+        if !content.is_empty() {
+            return Err(not_a_number(content.span()));
+        }
+        return Ok((value, SpanRange::from(paren.span.join())));
     }
+    if let Some((group, span)) = input.step(|cursor| match cursor.group(Delimiter::None) {
+        Some((inside, span, rest)) => Ok((Some((inside.token_stream(), span.join())), rest)),
+        None => Ok((None, *cursor)),
+    })? {
+        let inner = nested(span)?;
+        let value = syn::parse::Parser::parse2(
+            |content: ParseStream| {
+                let (value, _) = parse_sum(content, inner)?;
+                if content.is_empty() {
+                    Ok(value)
+                } else {
+                    Err(not_a_number(content.span()))
+                }
+            },
+            group,
+        )?;
+        return Ok((value, SpanRange::from(span)));
+    }
+    if input.peek(syn::Lit) {
+        let lit: syn::Lit = input.parse()?;
+        let span = SpanRange::from(lit.span());
+        let value = match &lit {
+            syn::Lit::Float(f) => f.base10_parse::<f64>()?,
+            syn::Lit::Int(i) => i.base10_parse::<f64>()?,
+            _ => return Err(not_a_number(lit.span())),
+        };
+        return Ok((NumberValue::Constant(value), span));
+    }
+    if input.peek(Ident) {
+        let ident: Ident = input.parse()?;
+        let span = SpanRange::from(ident.span());
+        let value = match ident.to_string().as_str() {
+            "pi" | "PI" => NumberValue::Constant(std::f64::consts::PI),
+            name => NumberValue::Parameter {
+                name: name.to_owned(),
+                coefficient: 1.0,
+            },
+        };
+        return Ok((value, span));
+    }
+    Err(not_a_number(input.span()))
+}
+
+/// `left op right`: constants combine; a parameter may only be scaled by a constant.
+fn combine(
+    op: Operator,
+    left: NumberValue,
+    right: NumberValue,
+    span: SpanRange,
+) -> syn::Result<NumberValue> {
+    use NumberValue::{Constant, Parameter};
+    match (op, left, right) {
+        (Operator::Add, Constant(x), Constant(y)) => Ok(Constant(x + y)),
+        (Operator::Sub, Constant(x), Constant(y)) => Ok(Constant(x - y)),
+        (Operator::Mul, Constant(x), Constant(y)) => Ok(Constant(x * y)),
+        (Operator::Div, Constant(x), Constant(y)) => Ok(Constant(x / y)),
+        (Operator::Mul, Constant(c), Parameter { name, coefficient })
+        | (Operator::Mul, Parameter { name, coefficient }, Constant(c)) => Ok(Parameter {
+            name,
+            coefficient: coefficient * c,
+        }),
+        (Operator::Div, Parameter { name, coefficient }, Constant(c)) => Ok(Parameter {
+            name,
+            coefficient: coefficient / c,
+        }),
+        _ => Err(span.error("a parameter can only be multiplied or divided by a constant here")),
+    }
+}
+
+/// Numbers separated by commas, up to the end of `content`.
+fn parse_number_list(content: ParseStream) -> syn::Result<Vec<Number>> {
+    let mut numbers = Vec::new();
+    while !content.is_empty() {
+        numbers.push(parse_number(content)?);
+        if content.is_empty() {
+            break;
+        }
+        content.parse::<Token![,]>()?;
+    }
+    Ok(numbers)
 }
 
 /// `[x, y, z]`.
@@ -368,11 +480,7 @@ pub(crate) fn parse_vector(input: ParseStream) -> syn::Result<Vector> {
     let content;
     let bracket = bracketed!(content in input);
     let span = SpanRange::from(bracket.span.join());
-    let exprs = Punctuated::<Expr, Token![,]>::parse_terminated(&content)?;
-    let numbers = exprs
-        .iter()
-        .map(number_from_expr)
-        .collect::<syn::Result<Vec<_>>>()?;
+    let numbers = parse_number_list(&content)?;
     let components: [Number; 3] = numbers.try_into().map_err(|v: Vec<Number>| {
         span.error(format!("expected 3 numbers `[x, y, z]`, found {}", v.len()))
     })?;
@@ -446,8 +554,7 @@ fn parse_rotation(input: ParseStream) -> syn::Result<Rotation> {
     let span = SpanRange::new(form.span(), paren.span.join());
     match form.to_string().as_str() {
         "rpy" => {
-            let exprs = Punctuated::<Expr, Token![,]>::parse_terminated(&content)?;
-            let numbers = exprs.iter().map(number_from_expr).collect::<syn::Result<Vec<_>>>()?;
+            let numbers = parse_number_list(&content)?;
             let angles: [Number; 3] = numbers.try_into().map_err(|_| {
                 span.error("expected `rpy(roll, pitch, yaw)` with three angles in radians")
             })?;
@@ -1000,5 +1107,53 @@ mod tests {
             .starts_with("unknown setting `gravty`; did you mean `gravity`?"));
         assert!(message(quote! { pub struct P; wheel w {} })
             .starts_with("unknown item `wheel`; expected"));
+    }
+
+    /// Parses `pub struct P; gravity: [<number>, 0.0, 0.0];` from a string on a thread with
+    /// a 4 MiB stack (less than a main thread's 8 MiB) (the source is parsed, and dropped, there too).
+    fn mass_from_source(number: String) -> Result<f64, String> {
+        std::thread::Builder::new()
+            .stack_size(4 * 1024 * 1024)
+            .spawn(move || {
+                let source = format!("pub struct P; gravity: [{number}, 0.0, 0.0];");
+                let m = syn::parse_str::<Mechanism>(&source).map_err(|e| e.to_string())?;
+                match m.gravity {
+                    Some(Gravity::Vector(g)) => match g.components[0].value.clone() {
+                        NumberValue::Constant(c) => Ok(c),
+                        other => Err(format!("{other:?}")),
+                    },
+                    _ => Err("no gravity vector".to_owned()),
+                }
+            })
+            .map_err(|e| e.to_string())?
+            .join()
+            .map_err(|_| "the parser's thread panicked".to_owned())?
+    }
+
+    /// Issue item 10: deep nesting is an error, long flat sums and runs of minus signs parse
+    /// without recursion per term; none overflows a small stack.
+    #[test]
+    fn deep_numbers_do_not_overflow_the_stack() {
+        let deep = format!("{}1.0{}", "(".repeat(5000), ")".repeat(5000));
+        let e = mass_from_source(deep).expect_err("too deep");
+        assert!(e.contains("parentheses nest more than 64 deep"), "{e}");
+        let ok = format!("{}1.5{}", "(".repeat(64), ")".repeat(64));
+        assert_eq!(mass_from_source(ok), Ok(1.5));
+        assert_eq!(
+            mass_from_source(format!("{}2.0", "-".repeat(20_000))),
+            Ok(2.0)
+        );
+        assert_eq!(
+            mass_from_source(format!("{}2.0", "- ".repeat(20_001))),
+            Ok(-2.0)
+        );
+        let sum = vec!["1.0"; 50_000].join(" + ");
+        assert_eq!(mass_from_source(sum), Ok(50_000.0));
+        let product = vec!["1.0"; 50_000].join(" * ");
+        assert_eq!(mass_from_source(product), Ok(1.0));
+        assert_eq!(
+            mass_from_source("2.0 * (1.0 - 3.0) / 4.0 - -pi".into()),
+            Ok(-1.0 + std::f64::consts::PI)
+        );
     }
 }

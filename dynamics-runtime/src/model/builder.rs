@@ -333,7 +333,7 @@ impl ModelBuilder {
                 parent_pose.compose(&Placement::new(spec.translation, spec.rotation_rows));
             let child = index_of[spec.child.as_str()];
             let inertia = &self.bodies[child].inertia;
-            let axis = Vector3::from(spec.axis).normalize();
+            let axis = rules::unit_axis(spec.axis);
             let kind = match spec.kind {
                 JointType::Fixed => {
                     if let Some(b) = tree_parent {
@@ -452,7 +452,8 @@ fn report_unreached(
     }
 }
 
-/// Rule: every moving body, together with everything it carries, has mass or inertia;
+/// Rule: every moving body, together with everything it carries, has mass or inertia, or
+/// its joint has armature (rotor inertia, added to the coordinate's own entries of M);
 /// otherwise its joint coordinate has no inertia and M(q) is singular.
 fn check_massless_subtrees(model: &Model, errors: &mut Vec<ModelError>) {
     let n = model.bodies.len();
@@ -465,7 +466,7 @@ fn check_massless_subtrees(model: &Model, errors: &mut Vec<ModelError>) {
         }
     }
     for (body, carries) in model.bodies.iter().zip(carries_inertia) {
-        if !carries {
+        if !carries && body.joint.armature <= 0.0 {
             errors.push(ModelError::MasslessSubtree {
                 body: body.name.clone(),
                 joint: body.joint.name.clone(),

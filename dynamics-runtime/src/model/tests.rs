@@ -454,3 +454,40 @@ fn model_with_wrong_parameter_count_is_an_error() {
         "the mechanism declares 2 parameters but 1 values were given"
     );
 }
+
+/// Issue item 8: an axis component above 1.4e154 overflowed |a|² and the axis became zero;
+/// it is normalized by its largest component first.
+#[test]
+fn a_huge_axis_is_a_unit_axis() {
+    let model = ModelBuilder::new()
+        .body(rod("rod"))
+        .joint(JointSpec::revolute(
+            "pivot",
+            GROUND,
+            "rod",
+            [0.0, 0.0, 1e300],
+        ))
+        .build()
+        .expect("valid");
+    match model.bodies()[0].joint.kind {
+        JointKind::Revolute { axis_in_joint } => {
+            assert_eq!(axis_in_joint, Vector3::new(0.0, 0.0, 1.0))
+        }
+        ref other => panic!("{other:?}"),
+    }
+}
+
+/// Issue item 9: armature is inertia of the coordinate, M = [armature] for a massless slider.
+#[test]
+fn armature_gives_a_massless_subtree_inertia() {
+    ModelBuilder::new()
+        .body(BodySpec::new(
+            "carriage",
+            Inertia::new(0.0, [0.0; 3], [[0.0; 3]; 3]),
+        ))
+        .joint(
+            JointSpec::prismatic("slide", GROUND, "carriage", [1.0, 0.0, 0.0]).with_armature(0.5),
+        )
+        .build()
+        .expect("M = [0.5] is not singular");
+}
