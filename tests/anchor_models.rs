@@ -4,7 +4,7 @@
 //! and, joint by joint, the same parent, axis and placement, and body by body the same mass,
 //! mass centre and I_G (the file's conventions are the runtime's, see
 //! `shared/anchors/pinocchio/README.md` beside the repository). The `Mechanism` constants agree with the file
-//! too. The seed's mechanisms (`models::seed`) build with the numbers their docs state.
+//! too. The textbook's mechanisms (`models::seed`) build with the numbers their docs state.
 //!
 //! Tolerance: 1e-12 absolute for both front ends. The language models carry the file's
 //! numbers as literals. The URDF twins carry roll-pitch-yaw angles and recompute R from them

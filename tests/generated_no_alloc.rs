@@ -2,7 +2,7 @@
 //! binary's own, so it holds a single test) sees no allocation, reallocation or
 //! deallocation while every generated function, and its nalgebra wrapper `*_na`, runs once
 //! in double and once in single precision, for the UR5 and the Panda (every output), the
-//! seed's free-flying gyroscopic body (the outputs it asks for) and a random tree of
+//! textbook's free-flying gyroscopic body (the outputs it asks for) and a random tree of
 //! `tests/build.rs` with loads, a symbolic mass, armature and damping, and forward dynamics
 //! by both methods.
 

@@ -240,7 +240,7 @@ fn eccentric_rotor_reactions() {
             [inverse_dynamics, mass_matrix, kinetic_energy, potential_energy, joint_reactions]),
     );
     check_against_reference(&outputs, STATES, 11).print("EccentricRotor");
-    // The seed's inertia-force scale: m e ω² = 20 N at 100 rad/s, 80 N at 200 rad/s.
+    // The textbook's inertia-force scale: m e ω² = 20 N at 100 rad/s, 80 N at 200 rad/s.
     for (omega, expected) in [(100.0_f64, 20.0_f64), (200.0, 80.0)] {
         let w = EccentricRotor::joint_reactions(&[0.0_f64], &[omega], &[0.0]);
         let force = (w[0][0].powi(2) + w[0][1].powi(2) + w[0][2].powi(2)).sqrt();

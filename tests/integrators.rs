@@ -10,7 +10,7 @@ use models::anchors::DoublePendulum;
 use models::seed::GyroscopicBody;
 
 mechanism! {
-    /// The seed's rod with a very stiff viscous damper at the pivot: the velocity decays at
+    /// The textbook's rod with a very stiff viscous damper at the pivot: the velocity decays at
     /// b / I_O = 1000 / 0.24 ≈ 4167 1/s, so explicit schemes need dt < 2 I_O / b = 0.48 ms.
     pub struct StiffPendulum;
     gravity: [0.0, -9.81, 0.0];

@@ -188,7 +188,7 @@ proptest! {
         );
     }
 
-    /// Energy balance (the seed's Ė = τ θ̇, generalized): along a motion with velocity v and
+    /// Energy balance (the textbook's Ė = τ θ̇, generalized): along a motion with velocity v and
     /// acceleration a, dE/dt = τ · v for τ = ID(q, v, a), no damping (armature included: its
     /// kinetic energy and its torque). dE/dt by a central difference along q(t) with tangent
     /// v and v(t) = v + a t.

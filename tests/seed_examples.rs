@@ -1,13 +1,13 @@
-//! The seed's worked examples (Satici, *Kinematics and Machine Dynamics*, ch. 10,
+//! The textbook's worked examples (Satici, *Kinematics and Machine Dynamics*, ch. 10,
 //! "Formulation of Equations of Motion"), each through the runtime reference, with the
-//! seed's own numbers: exact ones to 1e-12, rounded ones to the seed's last digit.
+//! textbook's own numbers: exact ones to 1e-12, rounded ones to the textbook's last digit.
 
 use dynamics_runtime::{BodySpec, Inertia, JointSpec, Model, ModelBuilder, Reference, Wrench};
 use nalgebra::{DMatrix, Vector3};
 
-/// Tolerance of numbers the seed gives exactly.
+/// Tolerance of numbers the textbook gives exactly.
 const EXACT: f64 = 1e-12;
-/// Tolerance of numbers the seed rounds to three decimals.
+/// Tolerance of numbers the textbook rounds to three decimals.
 const ROUNDED: f64 = 5e-4;
 
 fn assert_near(what: &str, got: f64, expected: f64, tolerance: f64) {
@@ -18,10 +18,12 @@ fn assert_near(what: &str, got: f64, expected: f64, tolerance: f64) {
 }
 
 fn build(builder: ModelBuilder) -> Model {
-    builder.build().expect("the seed's mechanisms are valid")
+    builder
+        .build()
+        .expect("the textbook's mechanisms are valid")
 }
 
-/// The seed's uniform rod, "Worked example: a falling rigid rod": m = 2 kg, L = 0.60 m,
+/// The textbook's uniform rod, "Worked example: a falling rigid rod": m = 2 kg, L = 0.60 m,
 /// pivoted at its end O about z, θ counterclockwise from the downward vertical, so the mass
 /// centre is c = (0, −L/2, 0) in the body frame; a thin rod has I_G = diag(mL²/12, 0, mL²/12).
 const ROD_MASS: f64 = 2.0;
@@ -230,7 +232,7 @@ fn driven_pendulum_inverse_and_forward() {
 
 /// Seed, "An energy check on the pendulum equation": E = ½ I_O θ̇² + V and Ė = τ θ̇. The
 /// reference's energies are T = ½ I_O θ̇² and V = −m g l cos θ (zero at the pivot, so V
-/// differs from the seed's m g l (1 − cos θ) by the constant m g l); dE/dt by a central
+/// differs from the textbook's m g l (1 − cos θ) by the constant m g l); dE/dt by a central
 /// difference along a short trajectory θ(t) = θ₀ + θ̇₀ t + ½ θ̈₀ t², with τ from inverse
 /// dynamics.
 #[test]

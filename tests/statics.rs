@@ -1,5 +1,5 @@
-//! Statics and mechanism force analysis through the generated code: the seed's beam and
-//! falling rod with the seed's numbers; a four-bar and a slider-crank at several crank
+//! Statics and mechanism force analysis through the generated code: the textbook's beam and
+//! falling rod with the textbook's numbers; a four-bar and a slider-crank at several crank
 //! angles and speeds, checked against independent computations written here (closed-form
 //! loop closure, Lagrange multipliers on the runtime reference's tree dynamics, whole-
 //! mechanism momentum balance, and the energy balance τ ω = dE/dt); the four-bar at a dead
@@ -7,7 +7,7 @@
 //! stabilization, its constraint drift measured. Every reaction component and input torque
 //! of the four-bar and the slider-crank is also checked one by one against free-body
 //! diagrams written out here (Newton–Euler per link at its mass centre, hand kinematics, a
-//! 9 × 9 solve); the spatial analysis on two rotors held by one bearing (the seed's
+//! 9 × 9 solve); the spatial analysis on two rotors held by one bearing (the textbook's
 //! gyroscopic torque; an overhung, eccentric wobble plate with a pull at its rim) against
 //! Newton–Euler in 3-D; and a four-bar with a load on its coupler, whose closed-loop forward
 //! dynamics and force analysis must agree on the input torque, on pin B's reaction (the
@@ -887,7 +887,7 @@ fn seed_gyroscopic_torque_held_by_a_spatial_bearing() {
         axis: n,
     };
 
-    // The seed's instant: ω = (1, 2, 3) rad/s, α = 0, so M_G = ω × I_G ω = (0.6, −0.6, 0.2).
+    // The textbook's instant: ω = (1, 2, 3) rad/s, α = 0, so M_G = ω × I_G ω = (0.6, −0.6, 0.2).
     let rate = 14f64.sqrt();
     let x = ForceAnalysis::from(GyroscopicRotor::force_analysis(&[0.0], &[rate], &[0.0]))
         .checked(1e-9)
@@ -973,7 +973,7 @@ fn overhung_eccentric_wobble_plate_on_a_spatial_bearing() {
     let rim = Vector3::new(0.3, 0.1, 0.0);
 
     // The documented instant: 100 rad/s, no pull. The bearing's force is the centripetal
-    // m e ω² = 20 N (the seed's eccentricity example) toward the axis and the weight; its
+    // m e ω² = 20 N (the textbook's eccentricity example) toward the axis and the weight; its
     // couple about y the weight's arm, about z the centripetal force's arm and the wobble
     // plate's ω² I_xy; the torque holds the weight 1 mm off the axis.
     let x = ForceAnalysis::from(OverhungRotor::force_analysis(

@@ -1,5 +1,5 @@
 //! The main demo: mechanisms declared with `mechanism!`, their generated dynamics on the
-//! seed's worked examples, and, for every bundled model, what the generated code costs
+//! textbook's worked examples, and, for every bundled model, what the generated code costs
 //! (operation counts, time per call) and how far it is from the independent reference.
 //!
 //! Run with `cargo run --release -p models --example demo`.
@@ -67,9 +67,9 @@ fn arr<T: Copy, const N: usize>(x: &[T]) -> [T; N] {
     std::array::from_fn(|i| x[i])
 }
 
-/// The seed's worked numbers, computed by generated code.
+/// The textbook's worked numbers, computed by generated code.
 fn seed_examples() {
-    println!("The seed's worked examples (Satici, ch. 10), computed by generated code");
+    println!("The textbook's worked examples (Satici, ch. 10), computed by generated code");
     let theta = 30f64.to_radians();
     let qdd = FallingRod::forward_dynamics(&[theta], &[0.0], &[0.0])[0];
     println!("  falling rod, released at 30°:   θ̈ = {qdd:.4} rad/s²            (seed: −12.2625)");

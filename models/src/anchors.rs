@@ -6,7 +6,7 @@
 use dynamics_runtime::mechanism;
 
 mechanism! {
-    /// The seed's uniform rod (m = 2 kg, L = 0.6 m) pivoted at one end, gravity −y.
+    /// The textbook's uniform rod (m = 2 kg, L = 0.6 m) pivoted at one end, gravity −y.
     ///
     /// Declared from the numbers of `tests/data/pinocchio/pendulum.json`.
     pub struct Pendulum;

@@ -1,4 +1,4 @@
-//! Mechanisms declared with the toolkit: the seed's examples and the Pinocchio anchor
+//! Mechanisms declared with the toolkit: the textbook's examples and the Pinocchio anchor
 //! models (pendulums, a planar chain, UR5, Panda).
 
 pub mod anchors;

@@ -1,13 +1,13 @@
-//! Statics and mechanism force analysis (the seed's first and last sections): a supported
+//! Statics and mechanism force analysis (the textbook's first and last sections): a supported
 //! beam, a crank-rocker four-bar and a slider-crank, each a tree of joints closed by
 //! declared constraints, with the driving joint marked `driven`; the four-bar with a load
 //! on its coupler; and two rotors on a spatial bearing (`force_analysis: spatial;`), the
-//! seed's gyroscopic torque and an overhung, eccentric wobble plate.
+//! textbook's gyroscopic torque and an overhung, eccentric wobble plate.
 
 use dynamics_runtime::mechanism;
 
 mechanism! {
-    /// The seed's supported beam: a 1 m beam with a pin at A and a roller at B, loaded by
+    /// The textbook's supported beam: a 1 m beam with a pin at A and a roller at B, loaded by
     /// 100 N and 200 N downward at 0.2 m and 0.8 m, its weight neglected (no gravity).
     /// Equilibrium gives A_x = 0, A_y = 120 N, B_y = 180 N.
     pub struct SupportedBeam;
@@ -133,7 +133,7 @@ mechanism! {
 }
 
 mechanism! {
-    /// The seed's gyroscopic torque, held by a bearing (spatial force analysis): a rotor of
+    /// The textbook's gyroscopic torque, held by a bearing (spatial force analysis): a rotor of
     /// 2 kg with I_G = diag(0.2, 0.3, 0.4) kg·m², its mass centre on the bearing, turning on
     /// a fixed axis along (1, 2, 3) in its own frame, so that θ̇ = √14 rad/s is
     /// ω = (1, 2, 3) rad/s. At θ = 0, θ̇ = √14 rad/s, θ̈ = 0 the bearing supplies the couple
@@ -159,7 +159,7 @@ mechanism! {
     /// An overhung rotor on one long bearing (spatial force analysis): a shaft along x held
     /// at the origin by a spatial hinge (three forces and the two couples across the shaft)
     /// and driven there, carrying a 2 kg disc 0.3 m out whose mass centre is 1 mm off the
-    /// axis (the seed's eccentricity example, m e ω² = 20 N at 100 rad/s) and whose
+    /// axis (the textbook's eccentricity example, m e ω² = 20 N at 100 rad/s) and whose
     /// principal axes are turned 0.1 rad about z (a wobble plate: the spin axis is not
     /// principal, so spinning needs a gyroscopic couple), with a pull at the rim (the
     /// run-time input `loads`, in the disc's frame). Gravity along −z.

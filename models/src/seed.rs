@@ -1,9 +1,9 @@
-//! The seed chapter's mechanisms (Satici, *Kinematics and Machine Dynamics*, ch. 10).
+//! The textbook chapter's mechanisms (Satici, *Kinematics and Machine Dynamics*, ch. 10).
 
 use dynamics_runtime::mechanism;
 
 mechanism! {
-    /// The seed's falling rod and driven physical pendulum: a uniform rod, m = 2 kg,
+    /// The textbook's falling rod and driven physical pendulum: a uniform rod, m = 2 kg,
     /// L = 0.6 m, pivoted at one end; θ is measured counterclockwise from the downward
     /// vertical, so the mass centre is at c = PG = (0, −L/2, 0) in the rod frame.
     /// I_O = m L²/3 = 0.24 kg·m²; I_O θ̈ + m g l sin θ = τ.
@@ -19,7 +19,7 @@ mechanism! {
 }
 
 mechanism! {
-    /// The seed's eccentric rotor: a 2 kg rotor whose mass centre sits e = 1 mm off its
+    /// The textbook's eccentric rotor: a 2 kg rotor whose mass centre sits e = 1 mm off its
     /// spin axis. At ω = 100 rad/s the bearing carries the inertia force m e ω² = 20 N.
     pub struct EccentricRotor;
     gravity: none;
@@ -33,7 +33,7 @@ mechanism! {
 }
 
 mechanism! {
-    /// The seed's gyroscopic example: a free rigid body with I_G = diag(0.2, 0.3, 0.4)
+    /// The textbook's gyroscopic example: a free rigid body with I_G = diag(0.2, 0.3, 0.4)
     /// kg·m². Spinning at ω = (1, 2, 3) rad/s with α = 0 it needs M_G = ω × I_G ω =
     /// (0.6, −0.6, 0.2) N·m.
     pub struct GyroscopicBody;

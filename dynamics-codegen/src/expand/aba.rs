@@ -12,7 +12,7 @@
 //! ```
 //!
 //! with a_0 = [−g; 0] (gravity as an acceleration of the base). A spatial inertia is the
-//! seed's symmetric matrix [[m 1, −m ĉ], [m ĉ, I_P]], kept as three 3×3 blocks
+//! textbook's symmetric matrix [[m 1, −m ĉ], [m ĉ, I_P]], kept as three 3×3 blocks
 //! [[A, B], [Bᵀ, C]]; only one triangle of each symmetric block is computed, the other is
 //! the same nodes. X_iᵀ I X_i with X_i = [[Eᵀ, −Eᵀ r̂], [0, Eᵀ]] is, with A' = E A Eᵀ,
 //! B' = E B Eᵀ, C' = E C Eᵀ: [[A', B' − A' r̂], [Bᵀ' + r̂ A', C' + r̂ B' + (r̂ B')ᵀ − r̂ A' r̂]].

@@ -9,7 +9,7 @@
 //! I' = E I_P Eᵀ − ((E h)^ r̂ + r̂ (E h)^) − m r̂²
 //! ```
 //!
-//! (the seed's I_P = I_G − m ĉ² applied to the shifted mass centre). Column j: the wrench
+//! (the textbook's I_P = I_G − m ĉ² applied to the shifted mass centre). Column j: the wrench
 //! that the composite body needs to move along joint j's motion subspace s_j,
 //! f = I^c_j s_j (F = m v + ω × h, M_P = h × v + I_P ω for s = [v; ω]); then
 //! M_ij = s_iᵀ f for j and each ancestor i, carrying f to each parent frame on the way.

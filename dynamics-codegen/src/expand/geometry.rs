@@ -6,7 +6,7 @@
 //! revolute `E = R_pl · Rot(s, q)`, `r = p_pl`; prismatic `E = R_pl`, `r = p_pl + R_pl s q`;
 //! free `E = R(quaternion)`, `r = (x, y, z)`.
 //!
-//! The inertia of a (composite) body about P, in the body frame, is kept as the seed's
+//! The inertia of a (composite) body about P, in the body frame, is kept as the textbook's
 //! three quantities: m, the first moment h = m c (c = PG) and I_P = I_G − m ĉ², summed over
 //! the parts merged into the body. Constant parts fold to numbers at compile time; only
 //! declared parameters stay symbolic.

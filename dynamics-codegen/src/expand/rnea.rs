@@ -1,4 +1,4 @@
-//! Inverse dynamics by the recursive Newton–Euler algorithm, in the seed's shifted-inertia
+//! Inverse dynamics by the recursive Newton–Euler algorithm, in the textbook's shifted-inertia
 //! form about each body's joint point P (all vectors in the body frame).
 //!
 //! Forward sweep (body i, parent λ, joint axis s, E = rotation body → parent, r = P_i in the
@@ -15,7 +15,7 @@
 //! where U = α̂ + ω̂² is the matrix with U x = α × x + ω × (ω × x), the acceleration of a
 //! body-fixed point at x relative to P. It is built once per body from the six products
 //! ω_i ω_j and serves twice: to carry the acceleration to the children and in the body
-//! equation. Body equation (the seed's coupled six-dimensional equation, h = m c, c = PG,
+//! equation. Body equation (the textbook's coupled six-dimensional equation, h = m c, c = PG,
 //! I_P = I_G − m ĉ²):
 //!
 //! ```text
@@ -23,7 +23,7 @@
 //! M_P = m ĉ a_P + I_P α + ω × I_P ω = h × a_P + I_P α + ω × (I_P ω)
 //! ```
 //!
-//! with I_P α + ω × (I_P ω) from the Euler form of the seed (ω × (I_P ω) has first
+//! with I_P α + ω × (I_P ω) from the Euler form of the textbook (ω × (I_P ω) has first
 //! component (I_33 − I_22) ω_2 ω_3 + I_23 (ω_2² − ω_3²) + I_13 ω_1 ω_2 − I_12 ω_1 ω_3)
 //! gathered by inertia entry ([`euler_moment`]: e.g. I_12 (α_2 − ω_1 ω_3), a sum U
 //! already holds), whose constant differences fold at compile time. The applied loads on
@@ -367,10 +367,10 @@ fn forward(
     }
 }
 
-/// The seed's body equation about P: the wrench that produces the body's motion.
+/// The textbook's body equation about P: the wrench that produces the body's motion.
 ///
 /// F is always the shifted form F = m a_P + U h. The moment M_P = h × a_P + I_P α + ω × I_P ω
-/// equals c × F + I_G α + ω × I_G ω (the seed's M_P = M_G + c × F, from which the shifted
+/// equals c × F + I_G α + ω × I_G ω (the textbook's M_P = M_G + c × F, from which the shifted
 /// form is derived); when the body's inertia is constant, the grouping that costs fewer
 /// operations is used (I_G is often diagonal where I_P is not).
 pub fn body_wrench(g: &Graph, motion: &BodyMotion, inertia: &BodyInertia) -> (Vec3, Vec3) {

@@ -2,7 +2,7 @@
 //!
 //! **Force analysis.** Each moving body i balances, in its frame about its origin P_i,
 //! Σ_c W_c,i(x) = W_i with W_i = [m a_P + U h; h × a_P + I_P α + ω × I_P ω] − loads (the
-//! seed's shifted-inertia equations, gravity as base acceleration; the same body equation
+//! textbook's shifted-inertia equations, gravity as base acceleration; the same body equation
 //! as [`super::rnea`]). An unknown of connection c with unit direction d in the first
 //! body's frame a acts on the second body b, at its point x_b, and opposite on a, at x_a:
 //!

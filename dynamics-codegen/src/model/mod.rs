@@ -6,7 +6,7 @@
 //! offending tokens) before giving up, so the user sees every mistake at once. A model that
 //! comes out of `lower` is well-posed for the outputs it asks for.
 //!
-//! Frames and symbols are the seed's and the runtime's: a body's mass m, mass centre
+//! Frames and symbols are the textbook's and the runtime's: a body's mass m, mass centre
 //! c = PG and I_G are expressed in the body frame; a joint's placement (R, p) is the pose of
 //! the joint frame in the parent body's frame; the body frame is the joint frame after the
 //! motion.

@@ -1,11 +1,11 @@
-//! Statics and mechanism force analysis: the seed's free-body method, and the rules that
+//! Statics and mechanism force analysis: the textbook's free-body method, and the rules that
 //! decide at compile time whether it is well posed.
 //!
 //! Every moving body i balances, in its own frame about its origin P_i,
 //!
 //!   Σ_c W_c,i(x) = W_i,   W_i = [m a_P + U h;  h × a_P + I_P α + ω × I_P ω] − applied loads,
 //!
-//! the seed's shifted-inertia equations (h = m c, c = PG, I_P = I_G − m ĉ², gravity as an
+//! the textbook's shifted-inertia equations (h = m c, c = PG, I_P = I_G − m ĉ², gravity as an
 //! acceleration of the base). The unknowns x are the components each connection can
 //! transmit (a pin: two forces and no couple in the plane; a roller: one normal force; a
 //! planar prismatic joint: a normal force and a couple; a weld: everything) and the efforts

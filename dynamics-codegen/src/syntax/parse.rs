@@ -956,7 +956,7 @@ mod tests {
     #[test]
     fn parses_the_falling_rod() {
         let m = parse(quote! {
-            /// The seed's falling rod.
+            /// The textbook's falling rod.
             pub struct FallingRod;
             gravity: [0.0, -9.81, 0.0];
             outputs: [inverse_dynamics, mass_matrix];
@@ -967,7 +967,7 @@ mod tests {
         })
         .expect("parses");
         assert_eq!(m.name, "FallingRod");
-        assert_eq!(m.docs, vec![" The seed's falling rod."]);
+        assert_eq!(m.docs, vec![" The textbook's falling rod."]);
         assert_eq!(m.bodies.len(), 1);
         assert_eq!(m.bodies[0].docs, vec![" A uniform rod."]);
         let com = m.bodies[0].com.as_ref().expect("com");

@@ -2,7 +2,7 @@
 //! in spatial form with linear-first six-vectors: motion `[v_P; ω]`, force `[F; M_P]`.
 //!
 //! Gravity is the ground's fictitious spatial acceleration `a_0 = [−g; 0]`. With `X_i` the
-//! motion transform parent → body, `S_i` the motion subspace and `I_i` the seed's coupled
+//! motion transform parent → body, `S_i` the motion subspace and `I_i` the textbook's coupled
 //! spatial inertia about P:
 //!
 //! ```text

@@ -5,7 +5,7 @@
 //! Every quantity is in world coordinates about the world origin. `J_i` is body i's
 //! Jacobian (column k = the world-frame motion subspace column `S_k` of a joint supporting
 //! i, else 0), `J̇_i` has columns `v_j × S_k` (v_j the velocity of the body that joint k
-//! moves), `I_i` is the seed's spatial inertia moved to the world origin, and
+//! moves), `I_i` is the textbook's spatial inertia moved to the world origin, and
 //!
 //! ```text
 //!   B_i = ½ [ (v_i ×*) I_i + (I_i v_i) ×̄ − I_i (v_i ×) ],   (f ×̄) v = v ×* f,

@@ -1,7 +1,7 @@
 //! The joint-space inertia matrix M(q) by the composite-rigid-body algorithm
 //! (Featherstone RBDA §6.2, Table 6.2), in spatial form with linear-first six-vectors.
 //!
-//! Each body's spatial inertia about its origin P is the seed's coupled matrix
+//! Each body's spatial inertia about its origin P is the textbook's coupled matrix
 //! `I_i = [[m 1, −m ĉ], [m ĉ, I_P]]`, `I_P = I_G − m ĉ²`. With `X_i` the motion transform from
 //! the parent λ(i) to body i and `S_i` the motion subspace in the body frame:
 //!

@@ -1,4 +1,4 @@
-//! Kinetic and potential energy (seed, "An energy check on the pendulum equation" and
+//! Kinetic and potential energy (textbook, "An energy check on the pendulum equation" and
 //! "Generalized-coordinate equations", `T = ½ q̇ᵀ M q̇`).
 //!
 //! Kinetic energy, per body in its own frame, from the mass-centre velocity
@@ -10,7 +10,7 @@
 //!
 //! Potential energy of gravity, zero at the world origin (as Pinocchio's):
 //! `V = −Σ_i m_i g · c_i,world`, with `c_i,world = p_0i + R_0i c_i` the mass centre in the world.
-//! For the seed's pendulum this is `V = m g l (1 − cos θ) − m g l`.
+//! For the textbook's pendulum this is `V = m g l (1 − cos θ) − m g l`.
 
 use super::Reference;
 use crate::model::SizeError;

@@ -9,7 +9,7 @@
 //!
 //! Pose in the world: `R_0i = R_0λ R`, `p_0i = p_0λ + R_0λ p`.
 //!
-//! Velocities in the body frame (the seed's rigid-body velocity field, v_Q = v_P + ω × PQ):
+//! Velocities in the body frame (the textbook's rigid-body velocity field, v_Q = v_P + ω × PQ):
 //! `ω_i = Rᵀ ω_λ + s q̇` (revolute), `v_P,i = Rᵀ (v_P,λ + ω_λ × p) + s q̇` (prismatic); a free
 //! flyer's v = [v_P; ω] is already in the body frame and its parent is the ground.
 

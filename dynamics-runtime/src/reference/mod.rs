@@ -1,6 +1,6 @@
 //! The independent numeric reference: the textbook algorithms on a runtime [`Model`].
 //!
-//! Everything here is written from the seed chapter (Satici, *Kinematics and Machine
+//! Everything here is written from the textbook chapter (Satici, *Kinematics and Machine
 //! Dynamics*, ch. 10) and from Featherstone, *Rigid Body Dynamics Algorithms* (2008), and
 //! shares no code with the symbolic expansion, whose mistakes it exists to catch.
 //!
@@ -8,7 +8,7 @@
 //! - `spatial`: helpers for six-dimensional inertia, transforms and cross products,
 //!   linear first (motion `[v_P; ω]`, force `[F; M_P]`);
 //! - `kinematics`: placements, velocities and the body poses in the world;
-//! - `rnea`: recursive Newton–Euler in the seed's mass-centre form (inverse dynamics,
+//! - `rnea`: recursive Newton–Euler in the textbook's mass-centre form (inverse dynamics,
 //!   gravity, bias, nonlinear effects, joint reactions);
 //! - `crba`: composite-rigid-body algorithm, M(q);
 //! - `aba`: articulated-body algorithm, forward dynamics;
@@ -129,7 +129,7 @@ struct BodyConstants<T: Scalar> {
     com_in_body: Vector3<T>,
     /// I_G in the body frame.
     inertia_com_in_body: Matrix3<T>,
-    /// The seed's coupled matrix about P, `[[m1, −m ĉ], [m ĉ, I_P]]`, in the body frame.
+    /// The textbook's coupled matrix about P, `[[m1, −m ĉ], [m ĉ, I_P]]`, in the body frame.
     spatial_inertia_in_body: Matrix6<T>,
     /// Motion subspace S in the body frame: its first `nv` columns are the joint's.
     motion_subspace_in_body: Matrix6<T>,
@@ -466,7 +466,7 @@ mod tests {
         assert!((motion_cross(&v, &m).dot(&f) + m.dot(&force_cross(&v, &f))).abs() < 1e-15);
         assert!((force_cross_matrix(&v) + motion_cross_matrix(&v).transpose()).amax() < 1e-15);
         assert!((motion_cross_matrix(&v) * m - motion_cross(&v, &m)).amax() < 1e-15);
-        // The seed's coupled matrix is symmetric, and its motion transform preserves power:
+        // The textbook's coupled matrix is symmetric, and its motion transform preserves power:
         // (X m) · (X⁻ᵀ f) = m · f with X⁻ᵀ = the force transform child → parent inverted.
         let inertia = spatial_inertia(
             2.0,

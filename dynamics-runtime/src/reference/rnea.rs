@@ -1,4 +1,4 @@
-//! Inverse dynamics by the recursive Newton–Euler algorithm, in the seed's mass-centre form.
+//! Inverse dynamics by the recursive Newton–Euler algorithm, in the textbook's mass-centre form.
 //!
 //! Gravity enters as a fictitious upward acceleration of the ground, `a_0 = −g`
 //! (Featherstone RBDA §5.3): every body then carries its weight through its acceleration,
@@ -9,12 +9,12 @@
 //! ```text
 //!   ω_i  = Rᵀ ω_λ (+ s q̇, revolute)
 //!   α_i  = Rᵀ α_λ (+ ω_i × s q̇ + s q̈, revolute)                 (α = ω̇ in body axes)
-//!   a_Pi = Rᵀ (a_Pλ + α_λ × p + ω_λ × (ω_λ × p))                 (seed ch. 7, point of λ at P_i)
+//!   a_Pi = Rᵀ (a_Pλ + α_λ × p + ω_λ × (ω_λ × p))                 (textbook ch. 7, point of λ at P_i)
 //!          (+ 2 ω_i × s q̇ + s q̈, prismatic: Coriolis and relative acceleration)
 //!   free flyer (parent = ground): ω = ω_v, α = ω̇_v, a_P = Rᵀ a_0 + v̇_lin + ω × v_lin
 //! ```
 //!
-//! Body equations (seed, "Newton–Euler equations at the mass center" and "Moving the
+//! Body equations (textbook, "Newton–Euler equations at the mass center" and "Moving the
 //! reference point to the body"), with c = PG:
 //!
 //! ```text

@@ -1,7 +1,7 @@
-//! Six-dimensional (spatial) algebra, ordered linear first as in the seed.
+//! Six-dimensional (spatial) algebra, ordered linear first as in the textbook.
 //!
 //! A motion vector of a body, referred to a point P, is `m = [v_P; ω]` (v_P the velocity of
-//! the body point at P); a force vector is `f = [F; M_P]`. The seed's coupled
+//! the body point at P); a force vector is `f = [F; M_P]`. The textbook's coupled
 //! six-dimensional matrix is the spatial inertia about P (Satici ch. 10, "The coupled
 //! six-dimensional equation"):
 //!
