@@ -104,9 +104,43 @@
 //! | `constraint_residual` (or `constraints`: all three) | φ(q), zero when the constraints hold | `q` | `[T; NUM_CLOSURE_EQUATIONS]` |
 //! | `constraint_jacobian` (or `constraints`) | Φ_q = ∂φ/∂q | `q` | `[[T; NV]; NUM_CLOSURE_EQUATIONS]` |
 //! | `constraint_bias` (or `constraints`) | γ with Φ_q q̈ = γ | `q, v` | `[T; NUM_CLOSURE_EQUATIONS]` |
+//! | `joint_placements` | per body (`BODY_NAMES`), its frame's pose in the world (R, p): x_world = R x_body + p | `q` | `[([[T; 3]; 3], [T; 3]); NB]` |
+//! | `joint_jacobians` | per body, J (6 × nv, rows [linear; angular]) with [v_P; ω] = J q̇ at the body origin in world axes (Pinocchio's `LOCAL_WORLD_ALIGNED`) | `q` | `[[[T; NV]; 6]; NB]` |
+//! | `joint_velocities` | per body, [v_P; ω] = J q̇, world axes | `q, v` | `[[T; 6]; NB]` |
+//! | `joint_acceleration_biases` | per body, J̇ q̇: the classical acceleration [a_P; α] at q̈ = 0 without gravity, world axes | `q, v` | `[[T; 6]; NB]` |
+//! | `center_of_mass` | c, world frame | `q` | `[T; 3]` |
+//! | `center_of_mass_jacobian` | J_c with ċ = J_c q̇ | `q` | `[[T; NV]; 3]` |
+//! | `centroidal_momentum_matrix` | A_G (6 × nv, rows [linear; angular about c], world axes) | `q` | `[[T; NV]; 6]` |
 //!
 //! `kinetic_energy` and `potential_energy` come together, as do the three constraint
-//! functions.
+//! functions. The kinematics outputs (the last seven) are generated only when named; a free
+//! base's columns are its velocity [v_P; ω] in its own frame. NB is the number of moving
+//! bodies (bodies welded by fixed joints count as one).
+//!
+//! ```rust
+//! use dynamics_runtime::mechanism;
+//!
+//! mechanism! {
+//!     /// A two-link planar arm in the xy plane.
+//!     pub struct Planar;
+//!     gravity: [0.0, -9.81, 0.0];
+//!     outputs: [joint_placements, joint_jacobians, center_of_mass];
+//!     body upper { mass: 1.0, com: [0.5, 0.0, 0.0], shape: point }
+//!     body lower { mass: 1.0, com: [0.5, 0.0, 0.0], shape: point }
+//!     joint shoulder: revolute(ground -> upper) { axis: z }
+//!     joint elbow: revolute(upper -> lower) { axis: z, at: [1.0, 0.0, 0.0] }
+//! }
+//!
+//! let q = [std::f64::consts::FRAC_PI_2, 0.0];
+//! let placements = Planar::joint_placements(&q);
+//! let (_, elbow) = placements[1];
+//! assert!(elbow[0].abs() < 1e-15 && (elbow[1] - 1.0).abs() < 1e-15);
+//! // The elbow's origin moves at ẋ = −1 per unit shoulder rate (it is at (0, 1)).
+//! let jacobians = Planar::joint_jacobians(&q);
+//! assert!((jacobians[1][0][0] + 1.0).abs() < 1e-15 && jacobians[1][5][0] == 1.0);
+//! let c = Planar::center_of_mass(&q);
+//! assert!(c[0].abs() < 1e-15 && (c[1] - 1.0).abs() < 1e-15);
+//! ```
 //!
 //! ```rust
 //! use dynamics_runtime::mechanism;
