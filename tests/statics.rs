@@ -68,8 +68,8 @@ fn seed_falling_rod_pin_reactions() {
             .expect("determinate");
     assert_near("R_x", r_x, m * l * alpha * theta.cos(), 1e-12);
     assert_near("R_y", r_y, m * G + m * l * alpha * theta.sin(), 1e-12);
-    assert_near("R_x (seed)", r_x, -6.372, 5e-4);
-    assert_near("R_y (seed)", r_y, 15.941, 5e-4);
+    assert_near("R_x (textbook)", r_x, -6.372, 5e-4);
+    assert_near("R_y (textbook)", r_y, 15.941, 5e-4);
     assert_near("τ in free fall", torque, 0.0, 1e-12);
     let [_, _, holding] = FallingRod::force_analysis(&[theta], &[0.0], &[0.0]).0;
     assert_near("holding torque", holding, 2.943, 1e-12);
@@ -894,7 +894,7 @@ fn seed_gyroscopic_torque_held_by_a_spatial_bearing() {
         .expect("one hinge and its torque: determinate");
     let couple = x[3] * n1 + x[4] * n2 + x[5] * n;
     for (k, seed) in [0.6, -0.6, 0.2].into_iter().enumerate() {
-        assert_near("gyroscopic couple (seed)", couple[k], seed, 1e-12);
+        assert_near("gyroscopic couple (textbook)", couple[k], seed, 1e-12);
     }
     assert_near("spin.couple1", x[3], -2.2 / 13f64.sqrt(), 1e-12);
     assert_near("spin.couple2", x[4], -8.4 / 182f64.sqrt(), 1e-12);

@@ -29,7 +29,7 @@ macro_rules! report {
 }
 
 fn main() {
-    seed_examples();
+    textbook_examples();
     println!();
     println!("Bundled models: generated code vs the runtime reference (40 random states, f64)");
     println!(
@@ -68,31 +68,35 @@ fn arr<T: Copy, const N: usize>(x: &[T]) -> [T; N] {
 }
 
 /// The textbook's worked numbers, computed by generated code.
-fn seed_examples() {
+fn textbook_examples() {
     println!("The textbook's worked examples (Satici, ch. 10), computed by generated code");
     let theta = 30f64.to_radians();
     let qdd = FallingRod::forward_dynamics(&[theta], &[0.0], &[0.0])[0];
-    println!("  falling rod, released at 30°:   θ̈ = {qdd:.4} rad/s²            (seed: −12.2625)");
+    println!(
+        "  falling rod, released at 30°:   θ̈ = {qdd:.4} rad/s²            (textbook: −12.2625)"
+    );
     let hold = FallingRod::gravity(&[theta])[0];
-    println!("  holding torque at 30°:          τ = {hold:.4} N·m               (seed: +2.943)");
+    println!(
+        "  holding torque at 30°:          τ = {hold:.4} N·m               (textbook: +2.943)"
+    );
     let w = FallingRod::joint_reactions(&[theta], &[0.0], &[qdd])[0];
     let (s, c) = theta.sin_cos();
     let (rx, ry) = (c * w[0] - s * w[1], s * w[0] + c * w[1]);
-    println!("  pin reaction on the rod:        R = ({rx:.3}, {ry:.3}) N         (seed: (−6.372, 15.941))");
+    println!("  pin reaction on the rod:        R = ({rx:.3}, {ry:.3}) N         (textbook: (−6.372, 15.941))");
     let tau = GyroscopicBody::inverse_dynamics(
         &[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0],
         &[0.0, 0.0, 0.0, 1.0, 2.0, 3.0],
         &[0.0; 6],
     );
     println!(
-        "  gyroscopic torque ω × I_G ω:    M = ({:.1}, {:.1}, {:.1}) N·m        (seed: (0.6, −0.6, 0.2))",
+        "  gyroscopic torque ω × I_G ω:    M = ({:.1}, {:.1}, {:.1}) N·m        (textbook: (0.6, −0.6, 0.2))",
         tau[3], tau[4], tau[5]
     );
     for omega in [100.0_f64, 200.0] {
         let w = EccentricRotor::joint_reactions(&[0.0], &[omega], &[0.0])[0];
         let f = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
         println!(
-            "  eccentric rotor at {omega:>3} rad/s: bearing force m e ω² = {f:.1} N   (seed: {})",
+            "  eccentric rotor at {omega:>3} rad/s: bearing force m e ω² = {f:.1} N   (textbook: {})",
             if omega < 150.0 { "20 N" } else { "80 N" }
         );
     }
