@@ -96,6 +96,39 @@ fn first_moment_in_world(g: &Graph, pose: &Pose, inertia: &BodyInertia) -> Vec3 
         .add(g, pose.rotation_in_world.mul_vec(g, inertia.first_moment))
 }
 
+/// Each body's value replaced by the sum over its subtree, from the leaves to the root.
+fn add_to_parents<V: Copy>(model: &Model, values: &mut [V], add: impl Fn(V, V) -> V) {
+    for i in (0..values.len()).rev() {
+        if let Some(p) = model.bodies[i].parent {
+            values[p] = add(values[p], values[i]);
+        }
+    }
+}
+
+/// M_j and S_j of every subtree: its mass and its first moment about the world origin.
+fn subtree_masses_and_moments(
+    g: &Graph,
+    model: &Model,
+    poses: &[Pose],
+    inertias: &[BodyInertia],
+) -> (Vec<Node>, Vec<Vec3>) {
+    let mut mass: Vec<Node> = inertias.iter().map(|b| b.mass).collect();
+    let mut moment: Vec<Vec3> = poses
+        .iter()
+        .zip(inertias)
+        .map(|(pose, inertia)| first_moment_in_world(g, pose, inertia))
+        .collect();
+    add_to_parents(model, &mut mass, |a, b| g.add(a, b));
+    add_to_parents(model, &mut moment, |a, b| a.add(g, b));
+    (mass, moment)
+}
+
+/// A joint axis given in the joint (= body) frame, in world coordinates.
+fn axis_in_world(g: &Graph, pose: &Pose, axis_in_joint: [f64; 3]) -> Vec3 {
+    pose.rotation_in_world
+        .mul_vec(g, Vec3::constant(g, axis_in_joint))
+}
+
 /// 1 / M, the reciprocal of the total mass (a number when the masses are).
 fn reciprocal_total_mass(g: &Graph, inertias: &[BodyInertia]) -> Node {
     let masses: Vec<Node> = inertias.iter().map(|b| b.mass).collect();
@@ -128,18 +161,7 @@ pub fn center_of_mass_jacobian(
     inertias: &[BodyInertia],
 ) -> Vec<Vec<Node>> {
     let poses = body_poses(g, model, transforms);
-    let n = model.bodies.len();
-    // The subtrees' masses and first moments, from the leaves to the root.
-    let mut mass: Vec<Node> = inertias.iter().map(|b| b.mass).collect();
-    let mut moment: Vec<Vec3> = (0..n)
-        .map(|i| first_moment_in_world(g, &poses[i], &inertias[i]))
-        .collect();
-    for i in (0..n).rev() {
-        if let Some(p) = model.bodies[i].parent {
-            mass[p] = g.add(mass[p], mass[i]);
-            moment[p] = moment[p].add(g, moment[i]);
-        }
-    }
+    let (mass, moment) = subtree_masses_and_moments(g, model, &poses, inertias);
     let inverse_total = reciprocal_total_mass(g, inertias);
     let mut columns: Vec<Vec3> = vec![Vec3::zero(g); model.nv];
     for (j, body) in model.bodies.iter().enumerate() {
@@ -149,15 +171,11 @@ pub fn center_of_mass_jacobian(
         let k = body.joint.idx_v;
         match body.joint.kind {
             JointKind::Revolute { axis_in_joint } => {
-                let axis = pose
-                    .rotation_in_world
-                    .mul_vec(g, Vec3::constant(g, axis_in_joint));
+                let axis = axis_in_world(g, pose, axis_in_joint);
                 columns[k] = axis.cross(g, about_joint);
             }
             JointKind::Prismatic { axis_in_joint } => {
-                let axis = pose
-                    .rotation_in_world
-                    .mul_vec(g, Vec3::constant(g, axis_in_joint));
+                let axis = axis_in_world(g, pose, axis_in_joint);
                 columns[k] = axis.scale(g, mass[j]);
             }
             JointKind::Free => {
@@ -206,15 +224,11 @@ pub fn body_jacobians(
                 let k = joint.idx_v;
                 match joint.kind {
                     JointKind::Revolute { axis_in_joint } => {
-                        let axis = pose
-                            .rotation_in_world
-                            .mul_vec(g, Vec3::constant(g, axis_in_joint));
+                        let axis = axis_in_world(g, pose, axis_in_joint);
                         set(k, axis.cross(g, lever), axis);
                     }
                     JointKind::Prismatic { axis_in_joint } => {
-                        let axis = pose
-                            .rotation_in_world
-                            .mul_vec(g, Vec3::constant(g, axis_in_joint));
+                        let axis = axis_in_world(g, pose, axis_in_joint);
                         set(k, axis, Vec3::zero(g));
                     }
                     JointKind::Free => {
@@ -242,10 +256,7 @@ pub fn centroidal_momentum_matrix(
 ) -> Vec<Vec<Node>> {
     let poses = body_poses(g, model, transforms);
     let n = model.bodies.len();
-    let mut mass: Vec<Node> = inertias.iter().map(|b| b.mass).collect();
-    let mut moment: Vec<Vec3> = (0..n)
-        .map(|i| first_moment_in_world(g, &poses[i], &inertias[i]))
-        .collect();
+    let (mass, moment) = subtree_masses_and_moments(g, model, &poses, inertias);
     // Each body's rotational inertia about the world origin, world axes.
     let mut rotational: Vec<Mat3> = (0..n)
         .map(|i| {
@@ -261,13 +272,7 @@ pub fn centroidal_momentum_matrix(
                 .sub(g, pp.scale(g, inertia.mass))
         })
         .collect();
-    for i in (0..n).rev() {
-        if let Some(p) = model.bodies[i].parent {
-            mass[p] = g.add(mass[p], mass[i]);
-            moment[p] = moment[p].add(g, moment[i]);
-            rotational[p] = rotational[p].add(g, rotational[i]);
-        }
-    }
+    add_to_parents(model, &mut rotational, |a, b| a.add(g, b));
     let centre = center_of_mass(g, model, transforms, inertias);
     let mut columns: Vec<(Vec3, Vec3)> = vec![(Vec3::zero(g), Vec3::zero(g)); model.nv];
     for (j, body) in model.bodies.iter().enumerate() {
@@ -287,15 +292,11 @@ pub fn centroidal_momentum_matrix(
         let k = body.joint.idx_v;
         match body.joint.kind {
             JointKind::Revolute { axis_in_joint } => {
-                let axis = pose
-                    .rotation_in_world
-                    .mul_vec(g, Vec3::constant(g, axis_in_joint));
+                let axis = axis_in_world(g, pose, axis_in_joint);
                 columns[k] = about_centre(turning(axis));
             }
             JointKind::Prismatic { axis_in_joint } => {
-                let axis = pose
-                    .rotation_in_world
-                    .mul_vec(g, Vec3::constant(g, axis_in_joint));
+                let axis = axis_in_world(g, pose, axis_in_joint);
                 columns[k] = about_centre(sliding(axis));
             }
             JointKind::Free => {
