@@ -189,6 +189,38 @@ fn documentation(model: &Model) -> Vec<String> {
     lines
 }
 
+/// The type's `# Functions` section: the functions generated, with their operation counts,
+/// and the outputs not requested, with the line that adds them (the loop-closure functions
+/// only where the mechanism closes loops).
+fn functions_section(model: &Model, costs: &[Cost]) -> Vec<String> {
+    let closes_loops = model
+        .statics
+        .as_ref()
+        .is_some_and(|s| s.closure_count() > 0);
+    let mut lines = vec![String::new(), " # Functions".into(), String::new()];
+    for cost in costs {
+        lines.push(format!(" - [`Self::{}`]: {}.", cost.name, cost.ops));
+    }
+    let missing: Vec<&str> = crate::model::Outputs::NAMES
+        .iter()
+        .copied()
+        .filter(|name| !costs.iter().any(|c| c.name == *name))
+        .filter(|name| closes_loops || !name.starts_with("constraint_"))
+        .collect();
+    if !missing.is_empty() {
+        lines.push(String::new());
+        lines.push(format!(
+            " Not generated (add a name to the declaration's `outputs: [..];` to get it): {}.",
+            missing
+                .iter()
+                .map(|n| format!("`{n}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    lines
+}
+
 /// The op counts of one generated function, for `Mechanism::FUNCTIONS`.
 pub struct Cost {
     /// The function's name.
@@ -220,7 +252,8 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
     let name = &model.name;
     let vis = &model.visibility;
     let name_str = name.to_string();
-    let docs = documentation(model);
+    let mut docs = documentation(model);
+    docs.extend(functions_section(model, costs));
     let (nq, nv) = (model.nq, model.nv);
     let body_names = model.bodies.iter().map(|b| &b.name);
     let joint_names = model.bodies.iter().map(|b| &b.joint.name);

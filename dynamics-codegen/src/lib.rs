@@ -257,6 +257,9 @@ mod tests {
             "| `push` | `tool` | [0.1, 0, 0] | [0..3] = F |",
             "| `grip` | `upper` | [0, 0, 0] | [3..6] = F, [6..9] = M |",
             "`push`: A push at the tip.",
+            "/// # Functions",
+            "/// - [`Self::inverse_dynamics`]: ",
+            "`outputs: [..];` to get it): `forward_dynamics_aba`, `forward_dynamics_ldlt`,",
         ] {
             assert!(text.contains(expected), "missing {expected:?} in\n{text}");
         }
