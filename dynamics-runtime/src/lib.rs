@@ -42,7 +42,7 @@ pub use model::{
 };
 /// The nalgebra version the runtime and the generated `*_na` wrappers use.
 pub use nalgebra;
-pub use reference::{Pose, Reference, Wrench};
+pub use reference::{FrameError, Pose, Reference, Wrench};
 pub use scalar::{Real, Scalar};
 pub use statics::{ForceAnalysis, IllConditioned};
 
