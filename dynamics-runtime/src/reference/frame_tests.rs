@@ -1,5 +1,5 @@
-//! Tests of the frame kinematics: a planar two-link arm against hand formulas, every
-//! quantity against central finite differences of the one
+//! Tests of the frame kinematics and the centroidal quantities: a planar two-link arm
+//! against hand formulas, every quantity against central finite differences of the one
 //! below it (the configuration moved on its manifold by `integrate_configuration`), frames
 //! on merged bodies, the ground, and the errors.
 
@@ -60,6 +60,11 @@ fn planar_arm() -> Model {
         .frame(FrameSpec::new("tool", "link2").placed([L2, 0.0, 0.0], rz_rows(PHI)))
         .build()
         .expect("valid arm")
+}
+
+/// The z component of a planar cross product.
+fn cross2(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
 }
 
 fn assert_close(what: &str, got: &[f64], expected: &[f64], tolerance: f64) {
@@ -155,6 +160,52 @@ fn planar_arm_against_hand_formulas() {
         .frame_classical_acceleration(&q, &v, &[0.0; 2], tool)
         .expect("sizes match");
     assert_close("J̇ v", jdot_v.as_slice(), &tip_accel(0.0, 0.0), 1e-14);
+
+    // Centroidal momentum: the mass centres, their velocities and accelerations by hand.
+    let g1 = [D1 * c1, D1 * s1];
+    let g2 = [L1 * c1 + D2 * c12, L1 * s1 + D2 * s12];
+    let g = [
+        (M1 * g1[0] + M2 * g2[0]) / (M1 + M2),
+        (M1 * g1[1] + M2 * g2[1]) / (M1 + M2),
+    ];
+    let v1 = [-D1 * s1 * w1, D1 * c1 * w1];
+    let v2 = [
+        -L1 * s1 * w1 - D2 * s12 * w12,
+        L1 * c1 * w1 + D2 * c12 * w12,
+    ];
+    let acc1 = [
+        -D1 * (c1 * w1 * w1 + s1 * a1),
+        D1 * (-s1 * w1 * w1 + c1 * a1),
+    ];
+    let acc2 = [
+        -L1 * (c1 * w1 * w1 + s1 * a1) - D2 * (c12 * w12 * w12 + s12 * a12),
+        L1 * (-s1 * w1 * w1 + c1 * a1) + D2 * (-s12 * w12 * w12 + c12 * a12),
+    ];
+    let rel = |p: [f64; 2]| [p[0] - g[0], p[1] - g[1]];
+    let scaled = |m: f64, x: [f64; 2]| [m * x[0], m * x[1]];
+    let h = r.centroidal_momentum(&q, &v).expect("sizes match");
+    let h_by_hand = [
+        M1 * v1[0] + M2 * v2[0],
+        M1 * v1[1] + M2 * v2[1],
+        0.0,
+        0.0,
+        0.0,
+        cross2(rel(g1), scaled(M1, v1)) + cross2(rel(g2), scaled(M2, v2)) + IZZ1 * w1 + IZZ2 * w12,
+    ];
+    assert_close("h_G", h.as_slice(), &h_by_hand, 1e-14);
+    let h_dot = r.centroidal_momentum_rate(&q, &v, &a).expect("sizes match");
+    let h_dot_by_hand = [
+        M1 * acc1[0] + M2 * acc2[0],
+        M1 * acc1[1] + M2 * acc2[1],
+        0.0,
+        0.0,
+        0.0,
+        cross2(rel(g1), scaled(M1, acc1))
+            + cross2(rel(g2), scaled(M2, acc2))
+            + IZZ1 * a1
+            + IZZ2 * a12,
+    ];
+    assert_close("ḣ_G", h_dot.as_slice(), &h_dot_by_hand, 1e-14);
 }
 
 #[test]
@@ -365,6 +416,71 @@ fn classical_accelerations_are_derivatives_of_the_velocities() {
 }
 
 #[test]
+fn centroidal_momentum_rate_is_the_derivative_of_the_momentum() {
+    let model = floating_tree([0.0, 0.0, -9.81]);
+    let mut r = Reference::<f64>::new(&model);
+    let (q, v, a) = tree_state();
+    let zero = vec![0.0; model.nv()];
+    for (accel, what) in [(&zero, "Ȧ_G v"), (&a, "ḣ_G")] {
+        let plus = r
+            .centroidal_momentum(&moved(&model, &q, &v, H), &advanced(&v, accel, H))
+            .expect("sizes match");
+        let minus = r
+            .centroidal_momentum(&moved(&model, &q, &v, -H), &advanced(&v, accel, -H))
+            .expect("sizes match");
+        let rate = r
+            .centroidal_momentum_rate(&q, &v, accel)
+            .expect("sizes match");
+        assert_close(
+            what,
+            rate.as_slice(),
+            ((plus - minus) / (2.0 * H)).as_slice(),
+            FD_TOLERANCE,
+        );
+    }
+    // The linear momentum is the total mass times the velocity of the mass centre.
+    let h = r.centroidal_momentum(&q, &v).expect("sizes match");
+    let com_velocity = (r
+        .center_of_mass(&moved(&model, &q, &v, H))
+        .expect("sizes match")
+        - r.center_of_mass(&moved(&model, &q, &v, -H))
+            .expect("sizes match"))
+        / (2.0 * H);
+    let mass: f64 = model.bodies().iter().map(|b| b.inertia.mass).sum();
+    assert_close(
+        "linear momentum",
+        &h.as_slice()[..3],
+        (com_velocity * mass).as_slice(),
+        FD_TOLERANCE,
+    );
+}
+
+#[test]
+fn centroidal_momentum_rate_is_the_wrench_the_base_needs() {
+    // Without gravity, the wrench the free joint would transmit to the base (Newton–Euler's
+    // backward sweep) is the rate of the whole mechanism's momentum: moved to world axes
+    // and about the mass centre G, M_G = R M_P + (P − G) × R F.
+    let model = floating_tree([0.0; 3]);
+    let mut r = Reference::<f64>::new(&model);
+    let (q, v, a) = tree_state();
+    let mut reactions = vec![super::Wrench::zero(); model.bodies().len()];
+    r.joint_reactions(&q, &v, &a, None, &mut reactions)
+        .expect("sizes match");
+    let base = r.body_poses(&q).expect("sizes match")[0];
+    let com = r.center_of_mass(&q).expect("sizes match");
+    let force = base.rotation_in_world * reactions[0].force;
+    let moment =
+        base.rotation_in_world * reactions[0].moment + (base.origin_in_world - com).cross(&force);
+    let rate = r.centroidal_momentum_rate(&q, &v, &a).expect("sizes match");
+    assert_close(
+        "ḣ_G",
+        rate.as_slice(),
+        &[force.x, force.y, force.z, moment.x, moment.y, moment.z],
+        1e-13,
+    );
+}
+
+#[test]
 fn a_frame_on_a_merged_body_is_the_composition_of_placements() {
     let model = floating_tree([0.0, 0.0, -9.81]);
     let mut r = Reference::<f64>::new(&model);
@@ -556,6 +672,16 @@ fn wrong_sizes_and_frames_are_errors() {
         })
     );
     assert_eq!(
+        r.centroidal_momentum(&q, &v[1..]),
+        Err(SizeError {
+            what: "v",
+            expected: 8,
+            got: 7
+        })
+    );
+    assert!(r.centroidal_momentum(&q[1..], &v).is_err());
+    assert!(r.centroidal_momentum_rate(&q, &v, &a[1..]).is_err());
+    assert_eq!(
         no_such.to_string(),
         format!("frame {frames} does not exist: the model has {frames} frames (indices 0..{frames} into Model::frames())")
     );
@@ -565,6 +691,30 @@ fn wrong_sizes_and_frames_are_errors() {
     );
     // The right sizes work.
     assert!(r.frame_jacobian(&q, frames - 1, &mut jacobian).is_ok());
+}
+
+#[test]
+fn a_massless_mechanism_has_centroidal_momentum() {
+    // A spinning disc of inertia but no mass: no mass centre, h_G = [0; I ω].
+    let model = ModelBuilder::new()
+        .body(BodySpec::new(
+            "disc",
+            Inertia::new(
+                0.0,
+                [0.0; 3],
+                [[0.1, 0.0, 0.0], [0.0, 0.1, 0.0], [0.0, 0.0, 0.2]],
+            ),
+        ))
+        .joint(JointSpec::revolute("spin", GROUND, "disc", [0.0, 0.0, 1.0]).at([1.0, 2.0, 0.0]))
+        .build()
+        .expect("valid");
+    let mut r = Reference::<f64>::new(&model);
+    let h = r.centroidal_momentum(&[0.3], &[2.0]).expect("sizes match");
+    assert_eq!(h, Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.4));
+    let h_dot = r
+        .centroidal_momentum_rate(&[0.3], &[2.0], &[-1.0])
+        .expect("sizes match");
+    assert_eq!(h_dot, Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, -0.2));
 }
 
 #[test]
@@ -595,4 +745,13 @@ fn other_scalars_follow_double() {
     let mut jacobian = Matrix6xX::<f32>::zeros(model.nv());
     r32.frame_jacobian_local(&to32(&q), tool, &mut jacobian)
         .expect("sizes match");
+    let h = rdd
+        .centroidal_momentum_rate(&todd(&q), &todd(&v), &todd(&a))
+        .expect("sizes match");
+    let h64 = r64
+        .centroidal_momentum_rate(&q, &v, &a)
+        .expect("sizes match");
+    for k in 0..6 {
+        assert!((h[k].to_f64() - h64[k]).abs() < 1e-13 * (1.0 + h64[k].abs()));
+    }
 }

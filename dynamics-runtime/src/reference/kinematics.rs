@@ -215,6 +215,12 @@ impl<T: Scalar> Reference<'_, T> {
     pub fn center_of_mass(&mut self, q: &[T]) -> Result<Vector3<T>, SizeError> {
         self.check_q(q)?;
         self.update_placements(q);
+        let (total, first_moment) = self.mass_and_first_moment();
+        Ok(first_moment / total)
+    }
+
+    /// Σ m_i and Σ m_i (p_i + R_i c_i) (in the world) at the current placements.
+    pub(crate) fn mass_and_first_moment(&self) -> (T, Vector3<T>) {
         let mut first_moment = Vector3::zeros();
         let mut total = T::zero();
         for (body, pose) in self.bodies.iter().zip(&self.poses) {
@@ -222,6 +228,6 @@ impl<T: Scalar> Reference<'_, T> {
             first_moment += centre * body.mass;
             total += body.mass;
         }
-        Ok(first_moment / total)
+        (total, first_moment)
     }
 }

@@ -10,6 +10,7 @@
 //! - `kinematics`: placements, velocities and accelerations, the body poses in the world,
 //!   the centre of mass;
 //! - `frames`: operational frames: poses, Jacobians, velocities, classical accelerations;
+//! - `centroidal`: the centroidal momentum h_G and its rate ḣ_G;
 //! - `rnea`: recursive Newton–Euler in the textbook's mass-centre form (inverse dynamics,
 //!   gravity, bias, nonlinear effects, joint reactions);
 //! - `crba`: composite-rigid-body algorithm, M(q);
@@ -32,6 +33,7 @@
 //! to M's diagonal; damping b adds `b·q̇` to the torque a joint needs.
 
 mod aba;
+mod centroidal;
 mod coriolis;
 mod crba;
 mod energy;
