@@ -1,7 +1,8 @@
 //! Tests of the frame kinematics and the centroidal quantities: a planar two-link arm
 //! against hand formulas, every quantity against central finite differences of the one
 //! below it (the configuration moved on its manifold by `integrate_configuration`), frames
-//! on merged bodies, the ground, and the errors.
+//! on merged bodies, the ground, the errors, and Pinocchio's values for the same tree
+//! (`pinocchio_frames.rs`).
 
 use super::{FrameError, Reference};
 use crate::model::{
@@ -754,4 +755,84 @@ fn other_scalars_follow_double() {
     for k in 0..6 {
         assert!((h[k].to_f64() - h64[k]).abs() < 1e-13 * (1.0 + h64[k].abs()));
     }
+}
+
+/// Row-major rows of a 6 × nv matrix.
+fn rows_of(m: &Matrix6xX<f64>) -> Vec<Vec<f64>> {
+    (0..6).map(|r| m.row(r).iter().copied().collect()).collect()
+}
+
+#[test]
+fn pinocchio_agrees_on_the_floating_tree() {
+    use super::pinocchio_frames as pin;
+    let model = floating_tree([0.0, 0.0, -9.81]);
+    let mut r = Reference::<f64>::new(&model);
+    let (q, v, a) = tree_state();
+    let zero = vec![0.0; model.nv()];
+    let tool = model.frame_index("tool").expect("declared");
+    let tip = model.frame_index("tip").expect("declared");
+    let pose = r.frame_pose(&q, tool).expect("sizes match");
+    let rotation_rows: Vec<f64> = pose.rotation_in_world.transpose().as_slice().to_vec();
+    let tolerance = 1e-14;
+    assert_close(
+        "oMf rotation",
+        &rotation_rows,
+        pin::TOOL_ROTATION.as_flattened(),
+        tolerance,
+    );
+    assert_close(
+        "oMf translation",
+        pose.origin_in_world.as_slice(),
+        &pin::TOOL_ORIGIN,
+        tolerance,
+    );
+    let mut jacobian = Matrix6xX::zeros(model.nv());
+    for (frame, local, expected, what) in [
+        (tool, false, &pin::TOOL_JACOBIAN, "tool J"),
+        (tool, true, &pin::TOOL_JACOBIAN_LOCAL, "tool J local"),
+        (tip, false, &pin::TIP_JACOBIAN, "tip J"),
+    ] {
+        if local {
+            r.frame_jacobian_local(&q, frame, &mut jacobian)
+        } else {
+            r.frame_jacobian(&q, frame, &mut jacobian)
+        }
+        .expect("sizes match");
+        for (row, expected_row) in rows_of(&jacobian).iter().zip(expected) {
+            assert_close(what, row, expected_row, tolerance);
+        }
+    }
+    let velocity = r.frame_velocity(&q, &v, tool).expect("sizes match");
+    assert_close(
+        "tool v",
+        velocity.as_slice(),
+        &pin::TOOL_VELOCITY,
+        tolerance,
+    );
+    let accel = r
+        .frame_classical_acceleration(&q, &v, &a, tool)
+        .expect("sizes match");
+    assert_close(
+        "tool a",
+        accel.as_slice(),
+        &pin::TOOL_CLASSICAL_ACCELERATION,
+        tolerance,
+    );
+    for (frame, expected, what) in [
+        (tool, &pin::TOOL_JDOT_V, "tool J̇ v"),
+        (tip, &pin::TIP_JDOT_V, "tip J̇ v"),
+    ] {
+        let jdot_v = r
+            .frame_classical_acceleration(&q, &v, &zero, frame)
+            .expect("sizes match");
+        assert_close(what, jdot_v.as_slice(), expected, tolerance);
+    }
+    let h = r.centroidal_momentum(&q, &v).expect("sizes match");
+    assert_close("hg", h.as_slice(), &pin::HG, tolerance);
+    let h_dot = r.centroidal_momentum_rate(&q, &v, &a).expect("sizes match");
+    assert_close("dhg", h_dot.as_slice(), &pin::DHG, tolerance);
+    let dag_v = r
+        .centroidal_momentum_rate(&q, &v, &zero)
+        .expect("sizes match");
+    assert_close("dAg v", dag_v.as_slice(), &pin::DAG_V, tolerance);
 }

@@ -39,6 +39,9 @@ mod crba;
 mod energy;
 #[cfg(test)]
 mod frame_tests;
+#[cfg(test)]
+#[rustfmt::skip]
+mod pinocchio_frames;
 mod frames;
 mod kinematics;
 pub use frames::FrameError;
