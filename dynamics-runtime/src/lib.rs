@@ -37,12 +37,12 @@ pub use dynamics::{
 pub use dynamics_macros::mechanism;
 pub use mechanism::{FunctionCost, Mechanism};
 pub use model::{
-    BodySpec, Inertia, JointKind, JointSpec, JointType, Model, ModelBuilder, ModelError,
+    BodySpec, FrameSpec, Inertia, JointKind, JointSpec, JointType, Model, ModelBuilder, ModelError,
     ModelErrors, Placement, SizeError, GROUND,
 };
 /// The nalgebra version the runtime and the generated `*_na` wrappers use.
 pub use nalgebra;
-pub use reference::{Pose, Reference, Wrench};
+pub use reference::{FrameError, Pose, Reference, Wrench};
 pub use scalar::{Real, Scalar};
 pub use statics::{ForceAnalysis, IllConditioned};
 

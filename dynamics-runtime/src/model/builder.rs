@@ -1,14 +1,15 @@
-//! Building a validated [`Model`] from declared bodies and joints.
+//! Building a validated [`Model`] from declared bodies, joints and operational frames.
 //!
 //! `build` checks every rule of [`super::rules`], resolves names, orders the bodies so that
 //! `parent[i] < i` (depth first, in declaration order, as Pinocchio orders URDF trees), merges
-//! bodies joined by fixed joints into composite bodies (parallel-axis theorem), and numbers
-//! the coordinates.
+//! bodies joined by fixed joints into composite bodies (parallel-axis theorem), numbers
+//! the coordinates, and places every frame (each declared body's, then each declared
+//! [`FrameSpec`]) on the tree body it moves with.
 
 use super::error::{ModelError, ModelErrors};
 use super::{rules, Body, Frame, Inertia, Joint, JointKind, Model, Placement, GROUND};
 use nalgebra::Vector3;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// The kind of a declared joint.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -129,11 +130,54 @@ impl JointSpec {
     }
 }
 
-/// Collects bodies, joints and gravity, then validates them into a [`Model`].
+/// A declared operational frame: a named frame rigidly attached to a declared body (merged
+/// through fixed joints or not) or to the ground, such as a tool centre point or a sensor.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameSpec {
+    /// Unique name among the frames, including those of the declared bodies.
+    pub name: String,
+    /// The declared body it is attached to, or [`GROUND`].
+    pub body: String,
+    /// Origin of the frame in that body's frame.
+    pub translation: [f64; 3],
+    /// Rotation frame → body, by rows: `x_in_body = R x_in_frame + translation`.
+    pub rotation_rows: [[f64; 3]; 3],
+}
+
+impl FrameSpec {
+    /// A frame named `name` at the origin of declared body `body` (or [`GROUND`]), with the
+    /// body's axes.
+    pub fn new(name: &str, body: &str) -> Self {
+        FrameSpec {
+            name: name.to_owned(),
+            body: body.to_owned(),
+            translation: [0.0; 3],
+            rotation_rows: IDENTITY_ROWS,
+        }
+    }
+
+    /// Places the frame in the declared body's frame: `x_in_body = R x_in_frame +
+    /// translation`, R given by rows.
+    pub fn placed(mut self, translation: [f64; 3], rotation_rows: [[f64; 3]; 3]) -> Self {
+        self.translation = translation;
+        self.rotation_rows = rotation_rows;
+        self
+    }
+
+    /// Places the frame's origin at `translation` in the declared body's frame, with the
+    /// body's axes.
+    pub fn at(mut self, translation: [f64; 3]) -> Self {
+        self.translation = translation;
+        self
+    }
+}
+
+/// Collects bodies, joints, frames and gravity, then validates them into a [`Model`].
 #[derive(Clone, Debug, Default)]
 pub struct ModelBuilder {
     bodies: Vec<BodySpec>,
     joints: Vec<JointSpec>,
+    frames: Vec<FrameSpec>,
     gravity_in_world: [f64; 3],
     skip_triangle_inequality: bool,
 }
@@ -162,6 +206,13 @@ impl ModelBuilder {
         self
     }
 
+    /// Adds an operational frame. [`Model::frames`] lists it after the frames of the
+    /// declared bodies, in the order the frames were added.
+    pub fn frame(mut self, frame: FrameSpec) -> Self {
+        self.frames.push(frame);
+        self
+    }
+
     /// Accepts inertias whose principal moments violate I1 + I2 ≥ I3. No real body has them,
     /// but some published models do (for example planar links given as laminae with products
     /// of inertia); the dynamics stay well defined as long as I_G is positive semi-definite.
@@ -175,6 +226,7 @@ impl ModelBuilder {
         let mut errors = Vec::new();
         self.check_numbers(&mut errors);
         let tree = self.resolve_tree(&mut errors);
+        self.resolve_frames(&mut errors);
         match tree {
             Some(order) if errors.is_empty() => {
                 let model = self.assemble(&order);
@@ -213,6 +265,41 @@ impl ModelBuilder {
             rules::axis_is_nonzero(joint, errors);
             rules::rotation_is_proper(joint, errors);
             rules::joint_coefficients_are_not_negative(joint, errors);
+        }
+        for frame in &self.frames {
+            rules::frame_numbers_are_finite(frame, errors);
+            rules::frame_rotation_is_proper(frame, errors);
+        }
+    }
+
+    /// Checks that every declared frame is attached to a declared body (or the ground) and
+    /// has a name no other frame has: neither a declared body's (every body is a frame), nor
+    /// the ground's, nor another declared frame's.
+    fn resolve_frames(&self, errors: &mut Vec<ModelError>) {
+        let body_names: HashSet<&str> = self.bodies.iter().map(|b| b.name.as_str()).collect();
+        let mut frame_names: HashSet<&str> = HashSet::new();
+        for frame in &self.frames {
+            if frame.body != GROUND && !body_names.contains(frame.body.as_str()) {
+                errors.push(ModelError::UnknownFrameBody {
+                    frame: frame.name.clone(),
+                    body: frame.body.clone(),
+                });
+            }
+            let taken_by = if frame.name == GROUND {
+                Some("the ground")
+            } else if body_names.contains(frame.name.as_str()) {
+                Some("a body (every declared body is a frame)")
+            } else if !frame_names.insert(&frame.name) {
+                Some("another frame")
+            } else {
+                None
+            };
+            if let Some(taken_by) = taken_by {
+                errors.push(ModelError::DuplicateFrameName {
+                    frame: frame.name.clone(),
+                    taken_by,
+                });
+            }
         }
     }
 
@@ -370,12 +457,12 @@ impl ModelBuilder {
                 inertia: inertia.clone(),
             });
         }
-        let frames = self
+        let mut frames: Vec<Frame> = self
             .bodies
             .iter()
-            .zip(attached)
+            .zip(&attached)
             .map(|(b, a)| {
-                let (body, placement_in_body) = a.unwrap_or((None, Placement::identity()));
+                let (body, placement_in_body) = a.clone().unwrap_or((None, Placement::identity()));
                 Frame {
                     name: b.name.clone(),
                     body,
@@ -383,6 +470,24 @@ impl ModelBuilder {
                 }
             })
             .collect();
+        // Declared frames: the declared body's pose in its tree body, then the frame's pose
+        // in the declared body (`resolve_frames` checked the names; an unknown one cannot
+        // reach here, and would be placed on the ground rather than panic).
+        for spec in &self.frames {
+            let own = Placement::new(spec.translation, spec.rotation_rows);
+            let declared_body = index_of
+                .get(spec.body.as_str())
+                .and_then(|&b| attached[b].clone());
+            let (body, placement_in_body) = match declared_body {
+                Some((body, body_pose)) => (body, body_pose.compose(&own)),
+                None => (None, own),
+            };
+            frames.push(Frame {
+                name: spec.name.clone(),
+                body,
+                placement_in_body,
+            });
+        }
         Model {
             bodies,
             frames,

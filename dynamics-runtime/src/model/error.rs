@@ -148,6 +148,35 @@ pub enum ModelError {
         /// Its parent.
         parent: String,
     },
+    /// A declared frame is attached to a body that was not declared.
+    UnknownFrameBody {
+        /// The frame.
+        frame: String,
+        /// The body name it used.
+        body: String,
+    },
+    /// A declared frame's name is already taken: by a declared body (every body is a
+    /// frame), by the ground, or by another declared frame.
+    DuplicateFrameName {
+        /// The frame.
+        frame: String,
+        /// "a body (every declared body is a frame)", "the ground" or "another frame".
+        taken_by: &'static str,
+    },
+    /// A declared frame's rotation is not orthonormal.
+    FrameRotationNotOrthonormal {
+        /// The frame.
+        frame: String,
+        /// max |RᵀR − 1|.
+        deviation: f64,
+    },
+    /// A declared frame's rotation is a reflection (determinant −1).
+    FrameRotationImproper {
+        /// The frame.
+        frame: String,
+        /// det R.
+        determinant: f64,
+    },
 }
 
 impl fmt::Display for ModelError {
@@ -269,6 +298,26 @@ impl fmt::Display for ModelError {
                 f,
                 "joint `{joint}`: a free-floating joint must attach its body to the ground, \
                  not to `{parent}`"
+            ),
+            UnknownFrameBody { frame, body } => write!(
+                f,
+                "frame `{frame}`: body `{body}` is not a declared body (nor `ground`); attach \
+                 the frame to a declared body"
+            ),
+            DuplicateFrameName { frame, taken_by } => write!(
+                f,
+                "frame `{frame}`: the name is already taken by {taken_by}; frame names must \
+                 be unique"
+            ),
+            FrameRotationNotOrthonormal { frame, deviation } => write!(
+                f,
+                "frame `{frame}`: placement rotation is not orthonormal (max |RᵀR − 1| = \
+                 {deviation:e}); give a rotation matrix, roll-pitch-yaw or axis-angle"
+            ),
+            FrameRotationImproper { frame, determinant } => write!(
+                f,
+                "frame `{frame}`: placement rotation has determinant {determinant}, a \
+                 reflection; a rotation has determinant +1"
             ),
         }
     }

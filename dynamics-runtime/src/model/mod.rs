@@ -14,6 +14,10 @@
 //!
 //! A [`Model`] only exists validated: build it with [`ModelBuilder`], which merges bodies
 //! joined by fixed joints into composite bodies and reports every ill-posed item at once.
+//!
+//! Its frames ([`Model::frames`]) are every declared body's frame (merged or not), then
+//! every operational frame declared with [`FrameSpec`], each placed in the tree body it
+//! moves with.
 
 mod builder;
 mod error;
@@ -21,7 +25,7 @@ mod rules;
 #[cfg(test)]
 mod tests;
 
-pub use builder::{BodySpec, JointSpec, JointType, ModelBuilder};
+pub use builder::{BodySpec, FrameSpec, JointSpec, JointType, ModelBuilder};
 pub use error::{ModelError, ModelErrors, SizeError};
 
 use nalgebra::{Matrix3, Vector3};
@@ -216,11 +220,12 @@ pub struct Body {
     pub inertia: Inertia,
 }
 
-/// A named frame rigidly attached to a body of the tree (every declared body has one,
-/// including those merged away through fixed joints).
+/// A named frame rigidly attached to a body of the tree: every declared body has one
+/// (including those merged away through fixed joints), and so has every operational frame
+/// declared with [`FrameSpec`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Frame {
-    /// The declared body's name.
+    /// The declared body's name, or the declared frame's.
     pub name: String,
     /// The body of the tree it moves with, `None` for the ground.
     pub body: Option<usize>,
@@ -244,7 +249,9 @@ impl Model {
         &self.bodies
     }
 
-    /// Every declared body as a frame on the tree, including merged ones.
+    /// Every declared body as a frame on the tree (merged ones included), in declaration
+    /// order, then every operational frame ([`FrameSpec`]) in the order it was added. The
+    /// reference's frame methods take an index into this list.
     pub fn frames(&self) -> &[Frame] {
         &self.frames
     }
@@ -269,9 +276,15 @@ impl Model {
         self.bodies.iter().position(|b| b.name == name)
     }
 
-    /// The frame of a declared body, merged or not.
+    /// The frame of a declared body (merged or not) or an operational frame, by name.
     pub fn frame(&self, name: &str) -> Option<&Frame> {
         self.frames.iter().find(|f| f.name == name)
+    }
+
+    /// The index in [`Model::frames`] of the frame with this name (a declared body's or an
+    /// operational frame's).
+    pub fn frame_index(&self, name: &str) -> Option<usize> {
+        self.frames.iter().position(|f| f.name == name)
     }
 
     /// The neutral configuration: zero joint coordinates, identity base orientation.

@@ -18,7 +18,7 @@
 //! this with matrices bisected onto the edges.
 
 use super::builder::JointType;
-use super::builder::{BodySpec, JointSpec};
+use super::builder::{BodySpec, FrameSpec, JointSpec};
 use super::error::ModelError;
 use super::matrix_from_rows;
 use nalgebra::{Matrix3, SymmetricEigen};
@@ -198,23 +198,82 @@ pub(crate) fn axis_is_nonzero(joint: &JointSpec, errors: &mut Vec<ModelError>) {
     }
 }
 
-/// Rule: a placement rotation is a proper rotation: RᵀR = 1 and det R = +1.
-pub(crate) fn rotation_is_proper(joint: &JointSpec, errors: &mut Vec<ModelError>) {
-    let r = matrix_from_rows(joint.rotation_rows);
+/// What is wrong with a placement rotation, if anything.
+enum RotationDefect {
+    /// max |RᵀR − 1| beyond the tolerance.
+    NotOrthonormal(f64),
+    /// Orthonormal, but det R < 0: a reflection.
+    Improper(f64),
+}
+
+/// Checks that R (given by rows, finite) is a proper rotation: RᵀR = 1 and det R = +1.
+/// `None` for a non-finite matrix, which the finiteness rules report.
+fn rotation_defect(rows: [[f64; 3]; 3]) -> Option<RotationDefect> {
+    let r = matrix_from_rows(rows);
     if !r.iter().all(|v| v.is_finite()) {
-        return;
+        return None;
     }
     let deviation = (r.transpose() * r - Matrix3::identity()).amax();
     if deviation > ROTATION_TOLERANCE + slack(1.0) {
-        errors.push(ModelError::RotationNotOrthonormal {
-            joint: joint.name.clone(),
-            deviation,
-        });
+        Some(RotationDefect::NotOrthonormal(deviation))
     } else if r.determinant() < 0.0 {
-        errors.push(ModelError::RotationImproper {
+        Some(RotationDefect::Improper(r.determinant()))
+    } else {
+        None
+    }
+}
+
+/// Rule: a placement rotation is a proper rotation: RᵀR = 1 and det R = +1.
+pub(crate) fn rotation_is_proper(joint: &JointSpec, errors: &mut Vec<ModelError>) {
+    match rotation_defect(joint.rotation_rows) {
+        Some(RotationDefect::NotOrthonormal(deviation)) => {
+            errors.push(ModelError::RotationNotOrthonormal {
+                joint: joint.name.clone(),
+                deviation,
+            })
+        }
+        Some(RotationDefect::Improper(determinant)) => errors.push(ModelError::RotationImproper {
             joint: joint.name.clone(),
-            determinant: r.determinant(),
-        });
+            determinant,
+        }),
+        None => {}
+    }
+}
+
+/// Rule: every number of a declared frame's placement is finite.
+pub(crate) fn frame_numbers_are_finite(frame: &FrameSpec, errors: &mut Vec<ModelError>) {
+    let checks: [(&'static str, &[f64]); 2] = [
+        ("translation", &frame.translation),
+        ("rotation", frame.rotation_rows.as_flattened()),
+    ];
+    for (field, values) in checks {
+        if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+            errors.push(ModelError::NonFinite {
+                item: format!("frame `{}`", frame.name),
+                field,
+                value: *v,
+            });
+        }
+    }
+}
+
+/// Rule: a declared frame's rotation is a proper rotation, with a joint's tolerance and slack
+/// (so that the runtime accepts whatever frame rotation the compiler accepts, as for joints).
+pub(crate) fn frame_rotation_is_proper(frame: &FrameSpec, errors: &mut Vec<ModelError>) {
+    match rotation_defect(frame.rotation_rows) {
+        Some(RotationDefect::NotOrthonormal(deviation)) => {
+            errors.push(ModelError::FrameRotationNotOrthonormal {
+                frame: frame.name.clone(),
+                deviation,
+            })
+        }
+        Some(RotationDefect::Improper(determinant)) => {
+            errors.push(ModelError::FrameRotationImproper {
+                frame: frame.name.clone(),
+                determinant,
+            })
+        }
+        None => {}
     }
 }
 

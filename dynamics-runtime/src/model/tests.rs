@@ -491,3 +491,189 @@ fn armature_gives_a_massless_subtree_inertia() {
         .build()
         .expect("M = [0.5] is not singular");
 }
+
+/// A revolute link `arm` carrying, through a fixed joint, a `hand` placed and turned.
+fn arm_with_hand() -> ModelBuilder {
+    let quarter_turn_z = [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+    pendulum()
+        .body(rod("arm"))
+        .body(rod("hand"))
+        .joint(JointSpec::revolute("shoulder", "rod", "arm", [0.0, 0.0, 1.0]).at([0.0, -1.0, 0.0]))
+        .joint(JointSpec::fixed("wrist", "arm", "hand").placed([0.5, 0.0, 0.0], quarter_turn_z))
+}
+
+#[test]
+fn declared_frames_follow_the_body_frames() {
+    let half_turn_x = [[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, -1.0]];
+    let model = arm_with_hand()
+        .frame(FrameSpec::new("tool", "hand").placed([0.1, 0.2, 0.0], half_turn_x))
+        .frame(FrameSpec::new("marker", GROUND).at([1.0, 2.0, 3.0]))
+        .frame(FrameSpec::new("elbow", "arm").at([0.0, 0.0, 0.3]))
+        .build()
+        .expect("valid");
+    let names: Vec<&str> = model.frames().iter().map(|f| f.name.as_str()).collect();
+    assert_eq!(names, ["rod", "arm", "hand", "tool", "marker", "elbow"]);
+    assert_eq!(model.frame_index("tool"), Some(3));
+    assert_eq!(model.frame_index("nowhere"), None);
+    // `tool` is on `hand`, merged into `arm` (tree body 1): hand's placement in arm, then
+    // the tool's in hand.
+    let hand = model.frame("hand").expect("hand");
+    let tool = model.frame("tool").expect("tool");
+    assert_eq!((hand.body, tool.body), (Some(1), Some(1)));
+    let expected = hand
+        .placement_in_body
+        .compose(&Placement::new([0.1, 0.2, 0.0], half_turn_x));
+    assert_eq!(tool.placement_in_body, expected);
+    // By hand: hand at (0.5, 0, 0) turned +90° about z, so the tool's origin is at
+    // (0.5 − 0.2, 0.1, 0) and its x axis along the arm's y.
+    assert_eq!(
+        tool.placement_in_body.translation,
+        Vector3::new(0.3, 0.1, 0.0)
+    );
+    assert_eq!(
+        tool.placement_in_body.rotation.column(0),
+        Vector3::new(0.0, 1.0, 0.0)
+    );
+    let marker = model.frame("marker").expect("marker");
+    assert_eq!(marker.body, None);
+    assert_eq!(
+        marker.placement_in_body,
+        Placement::translation([1.0, 2.0, 3.0])
+    );
+    let elbow = model.frame("elbow").expect("elbow");
+    assert_eq!(elbow.body, Some(1));
+    assert_eq!(
+        elbow.placement_in_body,
+        Placement::translation([0.0, 0.0, 0.3])
+    );
+}
+
+#[test]
+fn frame_on_an_unknown_body() {
+    let (e, m) = only_error(pendulum().frame(FrameSpec::new("tool", "claw")));
+    assert_eq!(
+        e,
+        ModelError::UnknownFrameBody {
+            frame: "tool".into(),
+            body: "claw".into()
+        }
+    );
+    assert!(
+        m.contains("frame `tool`: body `claw` is not a declared body"),
+        "{m}"
+    );
+}
+
+#[test]
+fn frame_names_are_unique_among_all_frames() {
+    let (e, m) = only_error(pendulum().frame(FrameSpec::new("rod", "rod")));
+    assert!(
+        matches!(e, ModelError::DuplicateFrameName { ref frame, taken_by } if frame == "rod" && taken_by.starts_with("a body")),
+        "{e:?}"
+    );
+    assert!(
+        m.contains("frame `rod`: the name is already taken by a body"),
+        "{m}"
+    );
+    let (e, _) = only_error(pendulum().frame(FrameSpec::new(GROUND, "rod")));
+    assert_eq!(
+        e,
+        ModelError::DuplicateFrameName {
+            frame: GROUND.into(),
+            taken_by: "the ground"
+        }
+    );
+    let (e, m) = only_error(
+        pendulum()
+            .frame(FrameSpec::new("tip", "rod"))
+            .frame(FrameSpec::new("tip", GROUND)),
+    );
+    assert_eq!(
+        e,
+        ModelError::DuplicateFrameName {
+            frame: "tip".into(),
+            taken_by: "another frame"
+        }
+    );
+    assert!(m.contains("already taken by another frame"), "{m}");
+}
+
+#[test]
+fn frame_numbers_must_be_finite() {
+    let errors = pendulum()
+        .frame(FrameSpec::new("tool", "rod").placed(
+            [0.0, f64::NAN, 0.0],
+            [[1.0, 0.0, 0.0], [0.0, f64::INFINITY, 0.0], [0.0, 0.0, 1.0]],
+        ))
+        .build()
+        .expect_err("ill-posed")
+        .0;
+    assert_eq!(errors.len(), 2, "{errors:?}");
+    assert!(
+        matches!(&errors[0], ModelError::NonFinite { item, field: "translation", value } if item == "frame `tool`" && value.is_nan()),
+        "{errors:?}"
+    );
+    assert!(
+        matches!(&errors[1], ModelError::NonFinite { field: "rotation", value, .. } if *value == f64::INFINITY),
+        "{errors:?}"
+    );
+}
+
+#[test]
+fn frame_rotation_must_be_proper() {
+    let sheared = [[1.0, 0.1, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let (e, m) =
+        only_error(pendulum().frame(FrameSpec::new("tool", "rod").placed([0.0; 3], sheared)));
+    assert!(
+        matches!(e, ModelError::FrameRotationNotOrthonormal { ref frame, deviation } if frame == "tool" && (deviation - 0.1).abs() < 1e-12),
+        "{e:?}"
+    );
+    assert!(
+        m.contains("frame `tool`: placement rotation is not orthonormal"),
+        "{m}"
+    );
+    let mirror = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]];
+    let (e, m) =
+        only_error(pendulum().frame(FrameSpec::new("tool", "rod").placed([0.0; 3], mirror)));
+    assert_eq!(
+        e,
+        ModelError::FrameRotationImproper {
+            frame: "tool".into(),
+            determinant: -1.0
+        }
+    );
+    assert!(m.contains("determinant -1, a reflection"), "{m}");
+}
+
+#[test]
+fn frame_errors_are_collected_with_the_tree_errors() {
+    let mirror = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]];
+    let errors = pendulum()
+        .body(rod("loose"))
+        .frame(FrameSpec::new("a", "claw"))
+        .frame(FrameSpec::new("loose", "rod").placed([0.0; 3], mirror))
+        .frame(FrameSpec::new("on_loose", "loose"))
+        .build()
+        .expect_err("ill-posed");
+    assert_eq!(
+        errors.0,
+        [
+            ModelError::FrameRotationImproper {
+                frame: "loose".into(),
+                determinant: -1.0
+            },
+            ModelError::NotConnected {
+                body: "loose".into()
+            },
+            ModelError::UnknownFrameBody {
+                frame: "a".into(),
+                body: "claw".into()
+            },
+            ModelError::DuplicateFrameName {
+                frame: "loose".into(),
+                taken_by: "a body (every declared body is a frame)"
+            },
+        ]
+    );
+    assert_eq!(errors.to_string().lines().count(), 4);
+}

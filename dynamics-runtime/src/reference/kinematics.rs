@@ -12,6 +12,16 @@
 //! Velocities in the body frame (the textbook's rigid-body velocity field, v_Q = v_P + ω × PQ):
 //! `ω_i = Rᵀ ω_λ + s q̇` (revolute), `v_P,i = Rᵀ (v_P,λ + ω_λ × p) + s q̇` (prismatic); a free
 //! flyer's v = [v_P; ω] is already in the body frame and its parent is the ground.
+//!
+//! Accelerations in the body frame (the rigid-body acceleration field of the parent at P_i,
+//! a_Q = a_P + α × PQ + ω × (ω × PQ), plus the joint's relative motion), with the ground
+//! accelerating at a_0 (−g for the Newton–Euler equations, 0 for kinematics):
+//!
+//! ```text
+//!   α_i  = Rᵀ α_λ (+ ω_i × s q̇ + s q̈, revolute)
+//!   a_Pi = Rᵀ (a_Pλ + α_λ × p + ω_λ × (ω_λ × p)) (+ 2 ω_i × s q̇ + s q̈, prismatic)
+//!   free flyer (parent = ground): α = ω̇_v, a_P = Rᵀ a_0 + v̇_lin + ω × v_lin
+//! ```
 
 use super::{BodyConstants, Motion, Pose, Reference};
 use crate::model::SizeError;
@@ -69,6 +79,11 @@ impl<T: Scalar> BodyConstants<T> {
             _ => 1,
         }
     }
+}
+
+/// Component `k` of an optional per-coordinate vector (`None` = zero).
+pub(super) fn coordinate<T: Scalar>(x: Option<&[T]>, k: usize) -> T {
+    x.map_or(T::zero(), |x| x[k])
 }
 
 impl<T: Scalar> Reference<'_, T> {
@@ -130,6 +145,62 @@ impl<T: Scalar> Reference<'_, T> {
         }
     }
 
+    /// ω, α and the classical acceleration a_P of every body in its own frame, for
+    /// velocities v and accelerations a (`None` = zero) with the ground accelerating at
+    /// `accel_ground_in_world` (−g for the Newton–Euler equations, zero for kinematics);
+    /// needs [`Self::update_placements`].
+    pub(crate) fn update_accelerations(
+        &mut self,
+        v: Option<&[T]>,
+        a: Option<&[T]>,
+        accel_ground_in_world: Vector3<T>,
+    ) {
+        for i in 0..self.bodies.len() {
+            let body = &self.bodies[i];
+            let (rotation, p) = (
+                self.scratch[i].rotation_in_parent,
+                self.scratch[i].origin_in_parent,
+            );
+            let (omega_parent, alpha_parent, accel_parent) = match body.parent {
+                None => (Vector3::zeros(), Vector3::zeros(), accel_ground_in_world),
+                Some(l) => {
+                    let s = &self.scratch[l];
+                    (s.omega_in_body, s.alpha_in_body, s.accel_origin_in_body)
+                }
+            };
+            let rt = rotation.transpose();
+            let mut omega = rt * omega_parent;
+            let mut alpha = rt * alpha_parent;
+            let mut accel_origin = rt
+                * (accel_parent
+                    + alpha_parent.cross(&p)
+                    + omega_parent.cross(&omega_parent.cross(&p)));
+            let (vi, ai) = (
+                |k| coordinate(v, body.idx_v + k),
+                |k| coordinate(a, body.idx_v + k),
+            );
+            match &body.motion {
+                Motion::Revolute { axis } => {
+                    omega += axis * vi(0);
+                    alpha += omega.cross(&(axis * vi(0))) + axis * ai(0);
+                }
+                Motion::Prismatic { axis } => {
+                    accel_origin += omega.cross(&(axis * vi(0))) * T::from_f64(2.0) + axis * ai(0);
+                }
+                Motion::FreeFlyer => {
+                    let v_lin = Vector3::new(vi(0), vi(1), vi(2));
+                    omega += Vector3::new(vi(3), vi(4), vi(5));
+                    alpha += Vector3::new(ai(3), ai(4), ai(5));
+                    accel_origin += Vector3::new(ai(0), ai(1), ai(2)) + omega.cross(&v_lin);
+                }
+            }
+            let s = &mut self.scratch[i];
+            s.omega_in_body = omega;
+            s.alpha_in_body = alpha;
+            s.accel_origin_in_body = accel_origin;
+        }
+    }
+
     /// Forward kinematics: the pose of every body frame in the world at configuration q,
     /// indexed like [`crate::Model::bodies`].
     pub fn body_poses(&mut self, q: &[T]) -> Result<&[Pose<T>], SizeError> {
@@ -144,6 +215,12 @@ impl<T: Scalar> Reference<'_, T> {
     pub fn center_of_mass(&mut self, q: &[T]) -> Result<Vector3<T>, SizeError> {
         self.check_q(q)?;
         self.update_placements(q);
+        let (total, first_moment) = self.mass_and_first_moment();
+        Ok(first_moment / total)
+    }
+
+    /// Σ m_i and Σ m_i (p_i + R_i c_i) (in the world) at the current placements.
+    pub(crate) fn mass_and_first_moment(&self) -> (T, Vector3<T>) {
         let mut first_moment = Vector3::zeros();
         let mut total = T::zero();
         for (body, pose) in self.bodies.iter().zip(&self.poses) {
@@ -151,6 +228,6 @@ impl<T: Scalar> Reference<'_, T> {
             first_moment += centre * body.mass;
             total += body.mass;
         }
-        Ok(first_moment / total)
+        (total, first_moment)
     }
 }

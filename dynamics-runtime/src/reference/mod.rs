@@ -7,7 +7,10 @@
 //! One file per algorithm:
 //! - `spatial`: helpers for six-dimensional inertia, transforms and cross products,
 //!   linear first (motion `[v_P; ω]`, force `[F; M_P]`);
-//! - `kinematics`: placements, velocities and the body poses in the world;
+//! - `kinematics`: placements, velocities and accelerations, the body poses in the world,
+//!   the centre of mass;
+//! - `frames`: operational frames: poses, Jacobians, velocities, classical accelerations;
+//! - `centroidal`: the centroidal momentum h_G and its rate ḣ_G;
 //! - `rnea`: recursive Newton–Euler in the textbook's mass-centre form (inverse dynamics,
 //!   gravity, bias, nonlinear effects, joint reactions);
 //! - `crba`: composite-rigid-body algorithm, M(q);
@@ -30,10 +33,18 @@
 //! to M's diagonal; damping b adds `b·q̇` to the torque a joint needs.
 
 mod aba;
+mod centroidal;
 mod coriolis;
 mod crba;
 mod energy;
+#[cfg(test)]
+mod frame_tests;
+#[cfg(test)]
+#[rustfmt::skip]
+mod pinocchio_frames;
+mod frames;
 mod kinematics;
+pub use frames::FrameError;
 pub(crate) use kinematics::quaternion_rotation;
 mod rnea;
 mod spatial;
@@ -82,13 +93,13 @@ impl<T: Scalar> Wrench<T> {
     }
 }
 
-/// The pose of a body frame in the world: `x_in_world = rotation_in_world · x_in_body +
-/// origin_in_world`.
+/// The pose of a body frame (or of an operational frame) in the world:
+/// `x_in_world = rotation_in_world · x_in_body + origin_in_world`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pose<T: Scalar> {
-    /// Rotation from body coordinates to world coordinates.
+    /// Rotation from body (or frame) coordinates to world coordinates.
     pub rotation_in_world: Matrix3<T>,
-    /// The body frame's origin P, in the world frame (m).
+    /// The body frame's origin P (or the frame's origin), in the world frame (m).
     pub origin_in_world: Vector3<T>,
 }
 
@@ -137,6 +148,17 @@ struct BodyConstants<T: Scalar> {
     damping: T,
 }
 
+/// One frame of [`Model::frames`], with its placement converted to `T` once.
+#[derive(Clone, Copy, Debug)]
+struct FrameConstants<T: Scalar> {
+    /// The tree body it moves with, `None` for the ground.
+    body: Option<usize>,
+    /// Rotation frame → body, and the frame's origin r = PF, in that body's frame (in the
+    /// world for a frame on the ground).
+    rotation_frame_in_body: Matrix3<T>,
+    origin_frame_in_body: Vector3<T>,
+}
+
 /// Per-body scratch of the algorithms, each quantity in the frame its name says.
 #[derive(Clone, Debug)]
 struct BodyScratch<T: Scalar> {
@@ -174,6 +196,7 @@ pub struct Reference<'m, T: Scalar> {
     model: &'m Model,
     gravity_in_world: Vector3<T>,
     bodies: Vec<BodyConstants<T>>,
+    frames: Vec<FrameConstants<T>>,
     scratch: Vec<BodyScratch<T>>,
     /// Pose of every body frame in the world.
     poses: Vec<Pose<T>>,
@@ -183,6 +206,8 @@ pub struct Reference<'m, T: Scalar> {
     /// Coriolis: the velocity indices supporting one body, and `B_i J_k + I_i J̇_k` for them.
     support: Vec<usize>,
     coriolis_work: Vec<Vector6<T>>,
+    /// Frame Jacobians: the joint rates e_k, one column at a time (length nv).
+    unit_rates: Vec<T>,
 }
 
 impl<'m, T: Scalar> Reference<'m, T> {
@@ -251,17 +276,28 @@ impl<'m, T: Scalar> Reference<'m, T> {
             };
             bodies.len()
         ];
+        let frames = model
+            .frames()
+            .iter()
+            .map(|frame| FrameConstants {
+                body: frame.body,
+                rotation_frame_in_body: mat3(&frame.placement_in_body.rotation),
+                origin_frame_in_body: vec3(&frame.placement_in_body.translation),
+            })
+            .collect();
         let nv = model.nv();
         Reference {
             model,
             gravity_in_world: vec3(&model.gravity_in_world()),
             poses: vec![Pose::identity(); bodies.len()],
             bodies,
+            frames,
             scratch,
             jacobian_column_in_world: vec![zero6; nv],
             jacobian_rate_column_in_world: vec![zero6; nv],
             support: Vec::with_capacity(nv),
             coriolis_work: vec![zero6; nv],
+            unit_rates: vec![T::zero(); nv],
         }
     }
 

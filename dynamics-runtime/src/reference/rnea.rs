@@ -4,7 +4,8 @@
 //! (Featherstone RBDA §5.3): every body then carries its weight through its acceleration,
 //! and the backward sweep yields the loads the joints really transmit.
 //!
-//! Forward sweep, in the frame of body i, whose pose in its parent λ is (R, p):
+//! Forward sweep (`Reference::update_accelerations`, shared with the frame kinematics), in the
+//! frame of body i, whose pose in its parent λ is (R, p):
 //!
 //! ```text
 //!   ω_i  = Rᵀ ω_λ (+ s q̇, revolute)
@@ -27,15 +28,10 @@
 //! and the joint needs `τ_i = s_iᵀ f_i + armature q̈_i + b q̇_i` (revolute `s · M_P`, prismatic
 //! `s · F`, free flyer all six components).
 
-use super::{Motion, Reference, Wrench};
+use super::kinematics::coordinate;
+use super::{Reference, Wrench};
 use crate::model::SizeError;
 use crate::scalar::Scalar;
-use nalgebra::Vector3;
-
-/// Component `k` of an optional per-coordinate vector (`None` = zero).
-fn coordinate<T: Scalar>(x: Option<&[T]>, k: usize) -> T {
-    x.map_or(T::zero(), |x| x[k])
-}
 
 impl<T: Scalar> Reference<'_, T> {
     /// Both sweeps; leaves each joint's wrench f_i in the body's scratch. `None` for v or a
@@ -48,46 +44,12 @@ impl<T: Scalar> Reference<'_, T> {
         f_ext: Option<&[Wrench<T>]>,
     ) {
         self.update_placements(q);
-        let accel_ground_in_world = -self.gravity_in_world;
+        self.update_accelerations(v, a, -self.gravity_in_world);
         for i in 0..self.bodies.len() {
             let body = &self.bodies[i];
-            let (rotation, p) = (
-                self.scratch[i].rotation_in_parent,
-                self.scratch[i].origin_in_parent,
-            );
-            let (omega_parent, alpha_parent, accel_parent) = match body.parent {
-                None => (Vector3::zeros(), Vector3::zeros(), accel_ground_in_world),
-                Some(l) => {
-                    let s = &self.scratch[l];
-                    (s.omega_in_body, s.alpha_in_body, s.accel_origin_in_body)
-                }
-            };
-            let rt = rotation.transpose();
-            let mut omega = rt * omega_parent;
-            let mut alpha = rt * alpha_parent;
-            let mut accel_origin = rt
-                * (accel_parent
-                    + alpha_parent.cross(&p)
-                    + omega_parent.cross(&omega_parent.cross(&p)));
-            let (vi, ai) = (
-                |k| coordinate(v, body.idx_v + k),
-                |k| coordinate(a, body.idx_v + k),
-            );
-            match &body.motion {
-                Motion::Revolute { axis } => {
-                    omega += axis * vi(0);
-                    alpha += omega.cross(&(axis * vi(0))) + axis * ai(0);
-                }
-                Motion::Prismatic { axis } => {
-                    accel_origin += omega.cross(&(axis * vi(0))) * T::from_f64(2.0) + axis * ai(0);
-                }
-                Motion::FreeFlyer => {
-                    let v_lin = Vector3::new(vi(0), vi(1), vi(2));
-                    omega += Vector3::new(vi(3), vi(4), vi(5));
-                    alpha += Vector3::new(ai(3), ai(4), ai(5));
-                    accel_origin += Vector3::new(ai(0), ai(1), ai(2)) + omega.cross(&v_lin);
-                }
-            }
+            let s = &self.scratch[i];
+            let (omega, alpha, accel_origin) =
+                (s.omega_in_body, s.alpha_in_body, s.accel_origin_in_body);
             // The body's equations about its mass centre G, then moved to P.
             let c = &body.com_in_body;
             let i_g = &body.inertia_com_in_body;
@@ -100,11 +62,7 @@ impl<T: Scalar> Reference<'_, T> {
                 force -= f_ext[i].force;
                 moment_origin -= f_ext[i].moment;
             }
-            let s = &mut self.scratch[i];
-            s.omega_in_body = omega;
-            s.alpha_in_body = alpha;
-            s.accel_origin_in_body = accel_origin;
-            s.joint_wrench_in_body = super::spatial::join(&force, &moment_origin);
+            self.scratch[i].joint_wrench_in_body = super::spatial::join(&force, &moment_origin);
         }
         for i in (0..self.bodies.len()).rev() {
             if let Some(l) = self.bodies[i].parent {
