@@ -6,7 +6,7 @@
 //! numbers affine in the parameters), so the runtime merges and validates it on its own:
 //! that is what lets the reference catch a mistake of the compiler.
 
-use crate::model::{DeclaredBody, DeclaredJoint, Mat3, Model, Value, Vec3};
+use crate::model::{DeclaredBody, DeclaredFrame, DeclaredJoint, Mat3, Model, Value, Vec3};
 use crate::syntax::JointKind;
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
@@ -80,6 +80,15 @@ fn joint_tokens(rt: &TokenStream, j: &DeclaredJoint) -> TokenStream {
             .placed(#translation, #rotation)
             .with_armature(#armature)
             .with_damping(#damping))
+    }
+}
+
+fn frame_tokens(rt: &TokenStream, f: &DeclaredFrame) -> TokenStream {
+    let (name, body) = (&f.name, &f.body);
+    let translation = f.translation.map(float_literal);
+    let rotation = rows_tokens(&f.rotation);
+    quote! {
+        .frame(#rt::FrameSpec::new(#name, #body).placed([#(#translation),*], #rotation))
     }
 }
 
@@ -167,6 +176,29 @@ fn documentation(model: &Model) -> Vec<String> {
             lines.push(format!(" `{}`:{}", load.name, load.docs.join(" ")));
         }
     }
+    if !model.frames.is_empty() {
+        lines.push(String::new());
+        lines.push(" # Frames".into());
+        lines.push(String::new());
+        lines.push(
+            " The operational frames of the `frame_*` functions, in their order (`FRAME_NAMES`, \
+             `Self::FRAME_<NAME>`)."
+                .into(),
+        );
+        lines.push(String::new());
+        lines.push(" | index | frame | moves with |".into());
+        lines.push(" | --- | --- | --- |".into());
+        for (index, frame) in model.frames.iter().enumerate() {
+            let body = frame
+                .body
+                .map_or("the ground", |b| model.bodies[b].name.as_str());
+            lines.push(format!(" | {index} | `{}` | `{body}` |", frame.name));
+        }
+        for frame in model.frames.iter().filter(|f| !f.docs.is_empty()) {
+            lines.push(String::new());
+            lines.push(format!(" `{}`:{}", frame.name, frame.docs.join(" ")));
+        }
+    }
     let documented: Vec<(&str, &[String])> = model
         .bodies
         .iter()
@@ -206,6 +238,7 @@ fn functions_section(model: &Model, costs: &[Cost]) -> Vec<String> {
         .copied()
         .filter(|name| !costs.iter().any(|c| c.name == *name))
         .filter(|name| closes_loops || !name.starts_with("constraint_"))
+        .filter(|name| !model.frames.is_empty() || !name.starts_with("frame_"))
         .collect();
     if !missing.is_empty() {
         lines.push(String::new());
@@ -227,6 +260,45 @@ pub struct Cost {
     pub name: String,
     /// Its operation counts.
     pub ops: crate::sym::OpCount,
+}
+
+/// Inherent constants naming the operational frames: `FRAME_<NAME>` (upper case, other
+/// characters than letters and digits as `_`) is the frame's index in the frame outputs;
+/// a name that would repeat one already given is left out (use `FRAME_NAMES`).
+pub fn frame_constants(model: &Model) -> TokenStream {
+    let mut seen: Vec<String> = Vec::new();
+    let constants = model
+        .frames
+        .iter()
+        .enumerate()
+        .filter_map(|(index, frame)| {
+            let upper: String = frame
+                .name
+                .chars()
+                .map(|c| {
+                    if c.is_ascii_alphanumeric() {
+                        c.to_ascii_uppercase()
+                    } else {
+                        '_'
+                    }
+                })
+                .collect();
+            let constant = format!("FRAME_{upper}");
+            if seen.contains(&constant) {
+                return None;
+            }
+            seen.push(constant.clone());
+            let ident = syn::Ident::new(&constant, proc_macro2::Span::call_site());
+            let doc = format!(
+                " Index of frame `{}` in the frame outputs (`FRAME_NAMES[{index}]`).",
+                frame.name
+            );
+            Some(quote! {
+                #[doc = #doc]
+                pub const #ident: usize = #index;
+            })
+        });
+    quote!(#(#constants)*)
 }
 
 /// Inherent constants of a mechanism with a force analysis: the names of the unknowns x
@@ -260,11 +332,16 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
     let parameter_names = model.parameters.iter().map(|p| &p.name);
     let nominal = model.parameters.iter().map(|p| float_literal(p.nominal));
     let load_names = model.loads.iter().map(|l| &l.name);
+    let frame_names = (!model.frames.is_empty()).then(|| {
+        let names = model.frames.iter().map(|f| &f.name);
+        quote!(const FRAME_NAMES: &'static [&'static str] = &[#(#names),*];)
+    });
     let num_load_inputs = model.load_inputs;
     let num_parameters = model.parameters.len();
     let gravity = model.gravity_in_world.map(float_literal);
     let bodies = model.declared_bodies.iter().map(|b| body_tokens(rt, b));
     let joints = model.declared_joints.iter().map(|j| joint_tokens(rt, j));
+    let frames = model.declared_frames.iter().map(|f| frame_tokens(rt, f));
     let skip = model
         .skip_triangle_inequality
         .then(|| quote!(.skip_triangle_inequality()));
@@ -295,6 +372,7 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
             const PARAMETER_NAMES: &'static [&'static str] = &[#(#parameter_names),*];
             const NOMINAL_PARAMETERS: &'static [f64] = &[#(#nominal),*];
             const LOAD_NAMES: &'static [&'static str] = &[#(#load_names),*];
+            #frame_names
             const NUM_LOAD_INPUTS: usize = #num_load_inputs;
             const FUNCTIONS: &'static [#rt::FunctionCost] = &[#(#functions),*];
 
@@ -308,6 +386,8 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
                 }
             }
 
+            // The declared numbers as written: a rotation's entries may be near 1/√2, π, ...
+            #[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal)]
             fn model_with_parameters(
                 parameters: &[f64],
             ) -> ::core::result::Result<#rt::Model, #rt::ModelErrors> {
@@ -322,6 +402,7 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
                     #skip
                     #(#bodies)*
                     #(#joints)*
+                    #(#frames)*
                     .build()
             }
         }

@@ -18,6 +18,9 @@
 //! | `centroidal_momentum_matrix(q)` | A_G: momentum and angular momentum about the centre of mass (asked for by name) | [`kinematics`] |
 //! | `joint_velocities(q, v)`, `joint_acceleration_biases(q, v)` | each body's [v_P; ω] and J̇ q̇, world axes at its origin (asked for by name) | [`kinematics`] + [`rnea`]'s forward sweep |
 //! | `joint_placements(q)`, `joint_jacobians(q)` | each body's (R, p) in the world and its 6 × nv Jacobian, world-aligned at its origin (asked for by name) | [`kinematics`] |
+//! | `frame_placements(q)`, `frame_jacobians(q)`, `frame_jacobians_local(q)` | each operational frame's (R, p) in the world and its 6 × nv Jacobian, world-aligned at its origin or in its own axes (asked for by name) | [`frames`] |
+//! | `frame_velocities(q, v)`, `frame_acceleration_biases(q, v)` | each operational frame's [v; ω] and J̇ q̇, world axes at its origin (asked for by name) | [`frames`] + [`rnea`]'s forward sweep |
+//! | `centroidal_bias(q, v)` | Ȧ_G q̇ (asked for by name) | [`kinematics`] + [`rnea`]'s forward sweep |
 //! | `force_analysis(q, v, a)` | every reaction component and driving effort, with the pivots of R | [`statics`] + [`qr`] |
 //! | `constraint_residual(q)`, `constraint_jacobian(q)`, `constraint_bias(q, v)` | φ, Φ_q, γ of the loop closures | [`statics`] |
 //!
@@ -31,6 +34,7 @@
 //! To add a function: write its expansion (a module of [`crate::expand`]), then one
 //! [`Entry`] here.
 
+use crate::expand::frames::{self, JacobianAxes};
 use crate::expand::geometry::BodyInertia;
 use crate::expand::rnea::{self, SweepInputs};
 use crate::expand::{
@@ -193,6 +197,48 @@ pub(crate) const CATALOG: &[Entry] = &[
         arrays: &[Array::Q],
         loads: false,
         expand: centroidal_momentum_matrix,
+    },
+    Entry {
+        name: "centroidal_bias",
+        wanted: |m| m.outputs.centroidal_bias && m.nv > 0,
+        arrays: &[Array::Q, Array::V],
+        loads: false,
+        expand: centroidal_bias,
+    },
+    Entry {
+        name: "frame_placements",
+        wanted: |m| m.outputs.frame_placements && !m.frames.is_empty(),
+        arrays: &[Array::Q],
+        loads: false,
+        expand: frame_placements,
+    },
+    Entry {
+        name: "frame_jacobians",
+        wanted: |m| m.outputs.frame_jacobians && !m.frames.is_empty() && m.nv > 0,
+        arrays: &[Array::Q],
+        loads: false,
+        expand: |m| frame_jacobians(m, JacobianAxes::WorldAligned),
+    },
+    Entry {
+        name: "frame_jacobians_local",
+        wanted: |m| m.outputs.frame_jacobians_local && !m.frames.is_empty() && m.nv > 0,
+        arrays: &[Array::Q],
+        loads: false,
+        expand: |m| frame_jacobians(m, JacobianAxes::Local),
+    },
+    Entry {
+        name: "frame_velocities",
+        wanted: |m| m.outputs.frame_velocities && !m.frames.is_empty() && m.nv > 0,
+        arrays: &[Array::Q, Array::V],
+        loads: false,
+        expand: frame_velocities,
+    },
+    Entry {
+        name: "frame_acceleration_biases",
+        wanted: |m| m.outputs.frame_acceleration_biases && !m.frames.is_empty() && m.nv > 0,
+        arrays: &[Array::Q, Array::V],
+        loads: false,
+        expand: frame_acceleration_biases,
     },
     Entry {
         name: "force_analysis",
@@ -562,21 +608,9 @@ fn center_of_mass_jacobian(model: &Model) -> Expanded {
 
 fn joint_placements(model: &Model) -> Expanded {
     let (g, t, _) = fresh_graph(model);
-    let poses = kinematics::body_poses(&g, model, &t);
-    let placements = poses
+    let placements = kinematics::body_poses(&g, model, &t)
         .iter()
-        .map(|pose| {
-            let rows = pose
-                .rotation_in_world
-                .0
-                .iter()
-                .map(|r| r.to_vec())
-                .collect();
-            Output::Tuple(vec![
-                Output::Matrix(rows),
-                Output::Vector(pose.origin_in_world.0.to_vec()),
-            ])
-        })
+        .map(pose_output)
         .collect();
     Expanded {
         graph: g,
@@ -610,16 +644,7 @@ fn joint_velocities(model: &Model) -> Expanded {
     let v = inputs(&g, Array::V, model.nv);
     let velocities = kinematics::body_jacobians(&g, model, &t)
         .into_iter()
-        .map(|rows| {
-            let twist = rows
-                .iter()
-                .map(|row| {
-                    let terms: Vec<Node> = row.iter().zip(&v).map(|(&j, &x)| g.mul(j, x)).collect();
-                    g.sum(&terms)
-                })
-                .collect();
-            Output::Vector(twist)
-        })
+        .map(|rows| Output::Vector(times(&g, &rows, &v)))
         .collect();
     Expanded {
         graph: g,
@@ -635,11 +660,9 @@ fn joint_acceleration_biases(model: &Model) -> Expanded {
     let (g, t, _) = fresh_graph(model);
     let v = inputs(&g, Array::V, model.nv);
     let zero = vec![g.zero(); model.nv];
-    let biases = kinematics::acceleration_biases(&g, model, &t, &v, &zero)
+    let biases = kinematics::motions_in_world(&g, model, &t, &v, &zero)
         .into_iter()
-        .map(|(linear, angular)| {
-            Output::Vector(linear.0.iter().chain(&angular.0).copied().collect())
-        })
+        .map(|m| Output::Vector(m.accel.0.iter().chain(&m.alpha.0).copied().collect()))
         .collect();
     Expanded {
         graph: g,
@@ -663,6 +686,126 @@ fn centroidal_momentum_matrix(model: &Model) -> Expanded {
               axes (Pinocchio's `ccrba`)."
             .to_owned(),
     }
+}
+
+fn centroidal_bias(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let v = inputs(&g, Array::V, model.nv);
+    let bias = kinematics::centroidal_bias(&g, model, &t, &i, &v);
+    Expanded {
+        graph: g,
+        output: Output::Vector(bias),
+        doc: "Ȧ_G q̇, 6 entries [linear; angular]: the rate of the centroidal momentum \
+              h_G = A_G q̇ at q̈ = 0 (world axes, angular part about the moving centre of mass), \
+              so that ḣ_G = A_G q̈ + Ȧ_G q̇ (Pinocchio's `dccrba` dAg times v, or \
+              `computeCentroidalMomentumTimeVariation`'s dhg at a = 0)."
+            .to_owned(),
+    }
+}
+
+/// (R, p) of a pose as an output: a 3 × 3 matrix of rows and a 3-vector.
+fn pose_output(pose: &kinematics::Pose) -> Output {
+    let rows = pose
+        .rotation_in_world
+        .0
+        .iter()
+        .map(|r| r.to_vec())
+        .collect();
+    Output::Tuple(vec![
+        Output::Matrix(rows),
+        Output::Vector(pose.origin_in_world.0.to_vec()),
+    ])
+}
+
+fn frame_placements(model: &Model) -> Expanded {
+    let (g, t, _) = fresh_graph(model);
+    let placements = frames::frame_poses(&g, model, &t)
+        .iter()
+        .map(pose_output)
+        .collect();
+    Expanded {
+        graph: g,
+        output: Output::Stack(placements),
+        doc: "The pose of every operational frame (indexed like `FRAME_NAMES`, see the \
+              `FRAME_*` constants) in the world: (R, p) with x_world = R x_frame + p \
+              (Pinocchio's `oMf` after `updateFramePlacements`)."
+            .to_owned(),
+    }
+}
+
+fn frame_jacobians(model: &Model, axes: JacobianAxes) -> Expanded {
+    let (g, t, _) = fresh_graph(model);
+    let jacobians = frames::frame_jacobians(&g, model, &t, axes)
+        .into_iter()
+        .map(Output::Matrix)
+        .collect();
+    let doc = match axes {
+        JacobianAxes::WorldAligned => {
+            "The Jacobian of every operational frame (indexed like `FRAME_NAMES`), 6 × nv, \
+             rows [linear; angular], at the frame's origin with the world's axes: [v; ω] of \
+             the frame in world coordinates = J q̇ (Pinocchio's `getFrameJacobian` in \
+             `LOCAL_WORLD_ALIGNED`). Columns of joints that do not move the frame are zero."
+        }
+        JacobianAxes::Local => {
+            "The Jacobian of every operational frame (indexed like `FRAME_NAMES`), 6 × nv, \
+             rows [linear; angular], in the frame's own axes: [v; ω] of the frame in its own \
+             coordinates = J q̇ (Pinocchio's `getFrameJacobian` in `LOCAL`). Columns of \
+             joints that do not move the frame are zero."
+        }
+    };
+    Expanded {
+        graph: g,
+        output: Output::Stack(jacobians),
+        doc: doc.to_owned(),
+    }
+}
+
+fn frame_velocities(model: &Model) -> Expanded {
+    let (g, t, _) = fresh_graph(model);
+    let v = inputs(&g, Array::V, model.nv);
+    let velocities = frames::frame_jacobians(&g, model, &t, JacobianAxes::WorldAligned)
+        .into_iter()
+        .map(|rows| Output::Vector(times(&g, &rows, &v)))
+        .collect();
+    Expanded {
+        graph: g,
+        output: Output::Stack(velocities),
+        doc: "The velocity of every operational frame (indexed like `FRAME_NAMES`), [v; ω] \
+              at its origin in world axes: J q̇ with J of `frame_jacobians` (Pinocchio's \
+              `getFrameVelocity` in `LOCAL_WORLD_ALIGNED`)."
+            .to_owned(),
+    }
+}
+
+fn frame_acceleration_biases(model: &Model) -> Expanded {
+    let (g, t, _) = fresh_graph(model);
+    let v = inputs(&g, Array::V, model.nv);
+    let biases = frames::frame_acceleration_biases(&g, model, &t, &v)
+        .into_iter()
+        .map(|(linear, angular)| {
+            Output::Vector(linear.0.iter().chain(&angular.0).copied().collect())
+        })
+        .collect();
+    Expanded {
+        graph: g,
+        output: Output::Stack(biases),
+        doc: "J̇ q̇ of every operational frame (indexed like `FRAME_NAMES`), world axes at its \
+              origin: the classical acceleration [a; α] of the frame at q̈ = 0 without \
+              gravity, so that [a; α] = J q̈ + J̇ q̇ with J of `frame_jacobians` (what \
+              task-space control needs; Pinocchio's `getFrameClassicalAcceleration` in \
+              `LOCAL_WORLD_ALIGNED` at a = 0)."
+            .to_owned(),
+    }
+}
+
+/// The products rows · x, one per row.
+fn times(g: &Graph, rows: &[Vec<Node>], x: &[Node]) -> Vec<Node> {
+    rows.iter()
+        .map(|row| {
+            let terms: Vec<Node> = row.iter().zip(x).map(|(&j, &x)| g.mul(j, x)).collect();
+            g.sum(&terms)
+        })
+        .collect()
 }
 
 /// The model's force-analysis data; [`CATALOG`] asks for the functions that read it only

@@ -144,10 +144,12 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
     let declaration = declare::declare(&compiled.model, &costs, &runtime);
     let traits = declare::dynamics_traits(&compiled.model, &runtime);
     let statics = declare::statics_constants(&compiled.model);
+    let frames = declare::frame_constants(&compiled.model);
     quote! {
         #declaration
         #traits
         impl #name {
+            #frames
             #statics
             #(#functions)*
         }

@@ -8,11 +8,12 @@
 //! | item | form |
 //! | --- | --- |
 //! | the type | `pub struct Name;` (exactly once; any visibility) |
-//! | a setting | `gravity: ..;`, `outputs: [..];`, `parameters: [..];`, `allow: [..];`, `urdf: "..";`, `floating_base: ..;`, `force_analysis: ..;`, `isa: ..;` (each at most once) |
+//! | a setting | `gravity: ..;`, `outputs: [..];`, `frames: [..];`, `parameters: [..];`, `allow: [..];`, `urdf: "..";`, `floating_base: ..;`, `force_analysis: ..;`, `isa: ..;` (each at most once) |
 //! | a body | `body name { mass: .., com: [..], inertia: .. }` or `{ .., shape: .. }` |
 //! | a joint | `joint name: kind(parent -> child) { .. }` or `joint name: kind(parent -> child);` |
 //! | a load | `load name: force on body at [x, y, z];` (also `couple`, `wrench`) |
 //! | a constraint | `constraint name: kind(a at [..], b at [..]) { .. };` |
+//! | a frame | `frame name: on body at [x, y, z] rotation ..;` (`at`, `rotation` optional) |
 //!
 //! The macro expands to the type, its implementations of [`Mechanism`](crate::Mechanism)
 //! (and, as the outputs allow, [`Dynamics`](crate::Dynamics),
@@ -111,11 +112,17 @@
 //! | `center_of_mass` | c, world frame | `q` | `[T; 3]` |
 //! | `center_of_mass_jacobian` | J_c with ċ = J_c q̇ | `q` | `[[T; NV]; 3]` |
 //! | `centroidal_momentum_matrix` | A_G (6 × nv, rows [linear; angular about c], world axes) | `q` | `[[T; NV]; 6]` |
+//! | `centroidal_bias` | Ȧ_G q̇: the rate of h_G = A_G q̇ at q̈ = 0 (angular part about the moving c) | `q, v` | `[T; 6]` |
+//! | `frame_placements` | per operational frame (`FRAME_NAMES`, see [Frames](#frames)), its pose (R, p) in the world | `q` | `[([[T; 3]; 3], [T; 3]); NF]` |
+//! | `frame_jacobians` | per frame, J (6 × nv) with [v; ω] of the frame = J q̇, world axes at the frame's origin (`LOCAL_WORLD_ALIGNED`) | `q` | `[[[T; NV]; 6]; NF]` |
+//! | `frame_jacobians_local` | the same in the frame's own axes (`LOCAL`) | `q` | `[[[T; NV]; 6]; NF]` |
+//! | `frame_velocities` | per frame, [v; ω] = J q̇, world axes | `q, v` | `[[T; 6]; NF]` |
+//! | `frame_acceleration_biases` | per frame, J̇ q̇: its classical acceleration [a; α] at q̈ = 0 without gravity, world axes | `q, v` | `[[T; 6]; NF]` |
 //!
 //! `kinetic_energy` and `potential_energy` come together, as do the three constraint
-//! functions. The kinematics outputs (the last seven) are generated only when named; a free
-//! base's columns are its velocity [v_P; ω] in its own frame. NB is the number of moving
-//! bodies (bodies welded by fixed joints count as one).
+//! functions. The kinematics outputs (from `joint_placements` on) are generated only when
+//! named; a free base's columns are its velocity [v_P; ω] in its own frame. NB is the number
+//! of moving bodies (bodies welded by fixed joints count as one), NF the number of frames.
 //!
 //! ```rust
 //! use dynamics_runtime::mechanism;
@@ -400,6 +407,48 @@
 //! let loads = [0.0, 2.0, 0.0, 0.0, 0.0, 0.5];
 //! let tau = Pushed::inverse_dynamics(&[0.7_f64], &[0.0], &[0.0], &loads);
 //! assert!((tau[0] + 2.5).abs() < 1e-12);
+//! ```
+//!
+//! # Frames
+//!
+//! `frame name: on body at [x, y, z] rotation ..;` attaches an operational frame (a tool
+//! centre point, a foot, a camera) to a body or to `ground`: its origin `at` and its
+//! `rotation` (any [rotation form](#rotations)) are given in the body's frame,
+//! x_body = R x_frame + p (the body's origin and axes when absent). Every body welded to
+//! another through a fixed joint is a frame too, named after it, so a URDF's end effectors,
+//! flanges and feet need no declaration. The frame outputs cover the welded bodies (in the
+//! tree's depth-first order) then the declared frames; `frames: [a, b];` chooses which, in
+//! that order (a moving body's name is accepted there too: its own frame). `FRAME_NAMES`
+//! lists them and `Type::FRAME_<NAME>` (upper case) is each one's index. A frame's name
+//! differs from every body's and every other frame's. In the Jacobians, a column of a joint
+//! that does not move the frame is a constant zero, and nothing is computed for it.
+//!
+//! ```rust
+//! use dynamics_runtime::{mechanism, Mechanism};
+//!
+//! mechanism! {
+//!     pub struct Planar;
+//!     gravity: [0.0, -9.81, 0.0];
+//!     outputs: [frame_placements, frame_jacobians, frame_acceleration_biases];
+//!     body upper { mass: 1.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }
+//!     body lower { mass: 1.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }
+//!     joint shoulder: revolute(ground -> upper) { axis: z }
+//!     joint elbow: revolute(upper -> lower) { axis: z, at: [1.0, 0.0, 0.0] }
+//!     /// The tip of the lower link, its x axis along the link.
+//!     frame tip: on lower at [1.0, 0.0, 0.0];
+//! }
+//!
+//! assert_eq!(Planar::FRAME_NAMES, ["tip"]);
+//! let q = [0.0, std::f64::consts::FRAC_PI_2];
+//! let (rotation, origin) = Planar::frame_placements(&q)[Planar::FRAME_TIP];
+//! assert!((origin[0] - 1.0).abs() < 1e-15 && (origin[1] - 1.0).abs() < 1e-15);
+//! assert!((rotation[1][0] - 1.0).abs() < 1e-15); // x_tip points along world y
+//! // The tip moves at −1 along x per unit shoulder rate, and per unit elbow rate.
+//! let jacobian = Planar::frame_jacobians(&q)[Planar::FRAME_TIP];
+//! assert!((jacobian[0][0] + 1.0).abs() < 1e-15 && (jacobian[0][1] + 1.0).abs() < 1e-15);
+//! // Spinning the elbow at 2 rad/s: the tip accelerates toward the elbow at 2² · 1 m.
+//! let bias = Planar::frame_acceleration_biases(&q, &[0.0, 2.0])[Planar::FRAME_TIP];
+//! assert!(bias[0].abs() < 1e-14 && (bias[1] + 4.0).abs() < 1e-14);
 //! ```
 //!
 //! # Constraints

@@ -45,6 +45,11 @@ pub trait Mechanism {
     const LOAD_NAMES: &'static [&'static str];
     /// Length of the loads input: 3 per force or couple, 6 per wrench.
     const NUM_LOAD_INPUTS: usize;
+    /// Names of the operational frames, in the order of the frame outputs
+    /// (`frame_placements`, `frame_jacobians`, ...): every body welded to another through a
+    /// fixed joint (URDF end effectors, flanges, feet), then every declared `frame`, or those
+    /// `frames: [..]` lists. `Robot::FRAME_<NAME>` is each one's index.
+    const FRAME_NAMES: &'static [&'static str] = &[];
 
     /// The generated functions and their operation counts.
     const FUNCTIONS: &'static [FunctionCost];

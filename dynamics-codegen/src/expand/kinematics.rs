@@ -197,6 +197,61 @@ pub fn center_of_mass_jacobian(
         .collect()
 }
 
+/// The columns of the Jacobian of a point moving with `body` (`None`: the ground), at
+/// `point` in the world, world-aligned: column k is [linear; angular] for velocity
+/// coordinate k, `None` for a joint that does not move the body (a zero column).
+pub fn point_jacobian_columns(
+    g: &Graph,
+    model: &Model,
+    poses: &[Pose],
+    body: Option<usize>,
+    point: Vec3,
+) -> Vec<Option<(Vec3, Vec3)>> {
+    let mut columns = vec![None; model.nv];
+    let mut on_path = body;
+    while let Some(j) = on_path {
+        let joint = &model.bodies[j].joint;
+        let pose = &poses[j];
+        let lever = point.sub(g, pose.origin_in_world);
+        let k = joint.idx_v;
+        match joint.kind {
+            JointKind::Revolute { axis_in_joint } => {
+                let axis = axis_in_world(g, pose, axis_in_joint);
+                columns[k] = Some((axis.cross(g, lever), axis));
+            }
+            JointKind::Prismatic { axis_in_joint } => {
+                let axis = axis_in_world(g, pose, axis_in_joint);
+                columns[k] = Some((axis, Vec3::zero(g)));
+            }
+            JointKind::Free => {
+                for e in 0..3 {
+                    let axis = pose.rotation_in_world.col(e);
+                    columns[k + e] = Some((axis, Vec3::zero(g)));
+                    columns[k + 3 + e] = Some((axis.cross(g, lever), axis));
+                }
+            }
+        }
+        on_path = model.bodies[j].parent;
+    }
+    columns
+}
+
+/// Jacobian columns as 6 rows [linear; angular] of nv entries (zero where `None`).
+pub fn jacobian_rows(g: &Graph, columns: &[Option<(Vec3, Vec3)>]) -> Vec<Vec<Node>> {
+    (0..6)
+        .map(|row| {
+            columns
+                .iter()
+                .map(|column| match column {
+                    Some((linear, _)) if row < 3 => linear.get(row),
+                    Some((_, angular)) => angular.get(row - 3),
+                    None => g.zero(),
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// The Jacobian of every body's frame in the world-aligned frame at its origin: for body
 /// i, 6 rows [linear; angular] of nv entries.
 pub fn body_jacobians(
@@ -205,43 +260,11 @@ pub fn body_jacobians(
     transforms: &[JointTransform],
 ) -> Vec<Vec<Vec<Node>>> {
     let poses = body_poses(g, model, transforms);
-    let zero = g.zero();
     (0..model.bodies.len())
         .map(|i| {
-            let mut rows = vec![vec![zero; model.nv]; 6];
-            let mut set = |col: usize, linear: Vec3, angular: Vec3| {
-                for k in 0..3 {
-                    rows[k][col] = linear.get(k);
-                    rows[3 + k][col] = angular.get(k);
-                }
-            };
-            let target = poses[i].origin_in_world;
-            let mut on_path = Some(i);
-            while let Some(j) = on_path {
-                let joint = &model.bodies[j].joint;
-                let pose = &poses[j];
-                let lever = target.sub(g, pose.origin_in_world);
-                let k = joint.idx_v;
-                match joint.kind {
-                    JointKind::Revolute { axis_in_joint } => {
-                        let axis = axis_in_world(g, pose, axis_in_joint);
-                        set(k, axis.cross(g, lever), axis);
-                    }
-                    JointKind::Prismatic { axis_in_joint } => {
-                        let axis = axis_in_world(g, pose, axis_in_joint);
-                        set(k, axis, Vec3::zero(g));
-                    }
-                    JointKind::Free => {
-                        for e in 0..3 {
-                            let axis = pose.rotation_in_world.col(e);
-                            set(k + e, axis, Vec3::zero(g));
-                            set(k + 3 + e, axis.cross(g, lever), axis);
-                        }
-                    }
-                }
-                on_path = model.bodies[j].parent;
-            }
-            rows
+            let columns =
+                point_jacobian_columns(g, model, &poses, Some(i), poses[i].origin_in_world);
+            jacobian_rows(g, &columns)
         })
         .collect()
 }
@@ -318,16 +341,27 @@ pub fn centroidal_momentum_matrix(
         .collect()
 }
 
-/// Every body's classical acceleration [a_P; α] in world axes at velocity `velocity` and
-/// acceleration `acceleration`, without gravity: the Newton–Euler forward sweep
-/// ([`rnea::motions`], body frames) turned into the world. At q̈ = 0 it is J̇ q̇.
-pub fn acceleration_biases(
+/// A body's motion in world axes: the classical acceleration a_P of its origin, α and ω.
+#[derive(Clone, Copy, Debug)]
+pub struct MotionInWorld {
+    /// a_P, the classical acceleration of the body origin.
+    pub accel: Vec3,
+    /// α, the angular acceleration.
+    pub alpha: Vec3,
+    /// ω, the angular velocity.
+    pub omega: Vec3,
+}
+
+/// Every body's classical acceleration [a_P; α] and ω in world axes at velocity `velocity`
+/// and acceleration `acceleration`, without gravity: the Newton–Euler forward sweep
+/// ([`rnea::motions`], body frames) turned into the world. At q̈ = 0, [a_P; α] is J̇ q̇.
+pub fn motions_in_world(
     g: &Graph,
     model: &Model,
     transforms: &[JointTransform],
     velocity: &[Node],
     acceleration: &[Node],
-) -> Vec<(Vec3, Vec3)> {
+) -> Vec<MotionInWorld> {
     let inputs = SweepInputs {
         velocity,
         acceleration,
@@ -339,11 +373,50 @@ pub fn acceleration_biases(
     motions
         .iter()
         .zip(&poses)
-        .map(|(motion, pose)| {
-            (
-                pose.rotation_in_world.mul_vec(g, motion.accel),
-                pose.rotation_in_world.mul_vec(g, motion.alpha),
-            )
+        .map(|(motion, pose)| MotionInWorld {
+            accel: pose.rotation_in_world.mul_vec(g, motion.accel),
+            alpha: pose.rotation_in_world.mul_vec(g, motion.alpha),
+            omega: pose.rotation_in_world.mul_vec(g, motion.omega),
         })
         .collect()
+}
+
+/// Ȧ_G q̇, the rate of the centroidal momentum h_G = A_G q̇ at q̈ = 0 (world axes, angular
+/// part about the moving centre of mass c). Each body's rate of momentum about its origin P
+/// is the textbook's F = m a_P + U h, M_P = h × a_P + I_P α + ω × I_P ω
+/// ([`rnea::body_wrench`]) at q̈ = 0 without gravity; summed in the world about its origin,
+/// ḣ_O = Σ [R F; R M_P + p × R F], and shifted to c: ḣ_G = [ḣ_lin; ḣ_O,ang − c × ḣ_lin]
+/// (the term ċ × M ċ of moving the reference point vanishes).
+pub fn centroidal_bias(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    inertias: &[BodyInertia],
+    velocity: &[Node],
+) -> Vec<Node> {
+    let zero = vec![g.zero(); model.nv];
+    let inputs = SweepInputs {
+        velocity,
+        acceleration: &zero,
+        gravity: false,
+        loads: false,
+    };
+    let motions = rnea::motions(g, model, transforms, &inputs);
+    let poses = body_poses(g, model, transforms);
+    let mut linear = Vec3::zero(g);
+    let mut angular = Vec3::zero(g);
+    for ((motion, pose), inertia) in motions.iter().zip(&poses).zip(inertias) {
+        let (force, moment) = rnea::body_wrench(g, motion, inertia);
+        let force_in_world = pose.rotation_in_world.mul_vec(g, force);
+        linear = linear.add(g, force_in_world);
+        angular = angular.add(
+            g,
+            pose.rotation_in_world
+                .mul_vec(g, moment)
+                .add(g, pose.origin_in_world.cross(g, force_in_world)),
+        );
+    }
+    let centre = center_of_mass(g, model, transforms, inertias);
+    let angular = angular.sub(g, centre.cross(g, linear));
+    linear.0.iter().chain(&angular.0).copied().collect()
 }

@@ -69,13 +69,25 @@ pub struct Outputs {
     pub joint_velocities: bool,
     /// Every body frame's J̇ q̇, world-aligned at its origin.
     pub joint_acceleration_biases: bool,
+    /// Every operational frame's pose in the world.
+    pub frame_placements: bool,
+    /// Every operational frame's Jacobian, world-aligned at its origin.
+    pub frame_jacobians: bool,
+    /// Every operational frame's Jacobian in its own axes.
+    pub frame_jacobians_local: bool,
+    /// Every operational frame's velocity, world-aligned at its origin.
+    pub frame_velocities: bool,
+    /// Every operational frame's J̇ q̇, world-aligned at its origin.
+    pub frame_acceleration_biases: bool,
+    /// Ȧ_G q̇, the rate of the centroidal momentum at q̈ = 0.
+    pub centroidal_bias: bool,
 }
 
 impl Outputs {
     /// The output names the language accepts: the names of the functions they generate
     /// (`kinetic_energy` and `potential_energy` come together, as do the three constraint
     /// functions).
-    pub const NAMES: [&'static str; 22] = [
+    pub const NAMES: [&'static str; 28] = [
         "inverse_dynamics",
         "gravity",
         "bias",
@@ -98,6 +110,12 @@ impl Outputs {
         "centroidal_momentum_matrix",
         "joint_velocities",
         "joint_acceleration_biases",
+        "frame_placements",
+        "frame_jacobians",
+        "frame_jacobians_local",
+        "frame_velocities",
+        "frame_acceleration_biases",
+        "centroidal_bias",
     ];
 
     /// Short names accepted too, each with the name it stands for.
@@ -132,6 +150,12 @@ impl Outputs {
             centroidal_momentum_matrix: false,
             joint_velocities: false,
             joint_acceleration_biases: false,
+            frame_placements: false,
+            frame_jacobians: false,
+            frame_jacobians_local: false,
+            frame_velocities: false,
+            frame_acceleration_biases: false,
+            centroidal_bias: false,
         }
     }
 
@@ -176,6 +200,12 @@ impl Outputs {
             "centroidal_momentum_matrix" => &mut self.centroidal_momentum_matrix,
             "joint_velocities" => &mut self.joint_velocities,
             "joint_acceleration_biases" => &mut self.joint_acceleration_biases,
+            "frame_placements" => &mut self.frame_placements,
+            "frame_jacobians" => &mut self.frame_jacobians,
+            "frame_jacobians_local" => &mut self.frame_jacobians_local,
+            "frame_velocities" => &mut self.frame_velocities,
+            "frame_acceleration_biases" => &mut self.frame_acceleration_biases,
+            "centroidal_bias" => &mut self.centroidal_bias,
             "constraint_residual" | "constraint_jacobian" | "constraint_bias" => {
                 &mut self.constraints
             }
@@ -327,6 +357,35 @@ impl LoadKind {
     }
 }
 
+/// An operational frame: a body welded to another through a fixed joint, or a declared
+/// `frame`, or a tree body named in `frames: [..]`.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    /// Its name (a declared frame's, or the body's).
+    pub name: String,
+    /// Its doc comments.
+    pub docs: Vec<String>,
+    /// The tree body it moves with (`None`: the ground).
+    pub body: Option<usize>,
+    /// Rotation from the frame to the tree body's frame (rows).
+    pub rotation_in_body: [[f64; 3]; 3],
+    /// Its origin in the tree body's frame.
+    pub origin_in_body: Vec3,
+}
+
+/// A declared `frame` as written, for the runtime `Model`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DeclaredFrame {
+    /// Name.
+    pub name: String,
+    /// The declared body it is on, or `ground`.
+    pub body: String,
+    /// Its origin in that body's frame.
+    pub translation: [f64; 3],
+    /// Its rotation in that body's frame (rows).
+    pub rotation: [[f64; 3]; 3],
+}
+
 /// A declared body as written (before merging), for the runtime `Model`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DeclaredBody {
@@ -382,6 +441,10 @@ pub struct Model {
     pub bodies: Vec<Body>,
     /// Applied loads, in declaration order.
     pub loads: Vec<Load>,
+    /// The operational frames the frame outputs cover: every body welded through a fixed
+    /// joint (in the tree's depth-first order) then every declared `frame`, or those
+    /// `frames: [..]` lists, in its order.
+    pub frames: Vec<Frame>,
     /// Total number of load inputs.
     pub load_inputs: usize,
     /// Length of q.
@@ -392,6 +455,8 @@ pub struct Model {
     pub declared_bodies: Vec<DeclaredBody>,
     /// The declared joints, including fixed ones.
     pub declared_joints: Vec<DeclaredJoint>,
+    /// The declared frames, selected or not.
+    pub declared_frames: Vec<DeclaredFrame>,
     /// Whether the triangle inequality was waived with `allow: [triangle_inequality]`.
     pub skip_triangle_inequality: bool,
     /// Files the declaration was read from (URDF), for rebuild tracking.

@@ -5,7 +5,7 @@
 //! constant makes sense, missing fields) and carries every span on, for the rules.
 
 use super::linear;
-use super::resolved::{Resolved, ResolvedBody, ResolvedJoint};
+use super::resolved::{Resolved, ResolvedBody, ResolvedFrame, ResolvedJoint};
 use super::value::{rotate_matrix, Mat3, Value, Vec3};
 use super::{rules, Diagnostics, Outputs, Parameter};
 use crate::syntax::{self, Axis, InertiaForm, Number, NumberValue, Rotation, ShapeKind, SpanRange};
@@ -275,6 +275,11 @@ pub(crate) fn resolve(mechanism: &syntax::Mechanism, diagnostics: &mut Diagnosti
             r.constant_checked_elsewhere(number);
         }
     }
+    let frames = mechanism
+        .frames
+        .iter()
+        .map(|f| resolve_frame(&mut r, f))
+        .collect();
     let mut outputs = resolve_outputs(
         &mechanism.outputs,
         !mechanism.constraints.is_empty(),
@@ -303,6 +308,26 @@ pub(crate) fn resolve(mechanism: &syntax::Mechanism, diagnostics: &mut Diagnosti
         skip_triangle_inequality,
         gravity,
         load_points,
+        frames,
+    }
+}
+
+fn resolve_frame(r: &mut Resolver, frame: &syntax::Frame) -> ResolvedFrame {
+    let translation = match &frame.at {
+        Some(at) => r.constant_vector(at, "a frame's placement"),
+        None => [0.0; 3],
+    };
+    let (rotation, rotation_span) = match &frame.rotation {
+        Some(rot) => (r.rotation(rot), rot.span()),
+        None => (linear::IDENTITY, SpanRange::from(frame.name.span)),
+    };
+    ResolvedFrame {
+        docs: frame.docs.clone(),
+        name: frame.name.clone(),
+        body: frame.body.clone(),
+        translation,
+        rotation,
+        rotation_span,
     }
 }
 

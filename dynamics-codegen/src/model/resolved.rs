@@ -33,6 +33,18 @@ pub(crate) struct ResolvedJoint {
     pub damping: (Value, SpanRange),
 }
 
+/// An operational frame with resolved numbers.
+pub(crate) struct ResolvedFrame {
+    pub docs: Vec<String>,
+    pub name: syntax::Name,
+    pub body: syntax::Name,
+    /// Its origin in the body frame.
+    pub translation: [f64; 3],
+    /// Its rotation in the body frame (rows).
+    pub rotation: [[f64; 3]; 3],
+    pub rotation_span: SpanRange,
+}
+
 /// The whole declaration, resolved.
 pub(crate) struct Resolved {
     pub parameters: Vec<Parameter>,
@@ -44,6 +56,8 @@ pub(crate) struct Resolved {
     pub gravity: [f64; 3],
     /// Each load's point of application, in declaration order (`None`: the origin).
     pub load_points: Vec<Option<Vec3>>,
+    /// The declared operational frames, in declaration order.
+    pub frames: Vec<ResolvedFrame>,
 }
 
 impl Resolved {

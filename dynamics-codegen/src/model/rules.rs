@@ -58,6 +58,7 @@ pub(crate) fn check_all(mechanism: &syntax::Mechanism, resolved: &Resolved, d: &
     bodies_reach_the_ground(mechanism, d);
     free_joint_is_on_the_ground(mechanism, d);
     loads_act_on_declared_bodies(mechanism, d);
+    frames_are_well_placed(mechanism, resolved, d);
     dynamics_need_a_degree_of_freedom(mechanism, resolved, d);
 }
 
@@ -424,28 +425,35 @@ fn axis_is_nonzero(joint: &ResolvedJoint, d: &mut Diagnostics) {
 
 /// Rule: a placement rotation is a proper rotation: RᵀR = 1 and det R = +1.
 fn rotation_is_proper(joint: &ResolvedJoint, d: &mut Diagnostics) {
-    let r = &joint.rotation;
+    rotation_is_proper_at(
+        &joint.rotation,
+        joint.rotation_span,
+        &format!("joint `{}`", joint.name.text),
+        d,
+    );
+}
+
+/// A rotation matrix is orthonormal with determinant +1; `what` names its owner.
+fn rotation_is_proper_at(r: &[[f64; 3]; 3], span: SpanRange, what: &str, d: &mut Diagnostics) {
     let deviation = linear::max_abs_entry(&linear::sub(
         &linear::mul(&linear::transpose(r), r),
         &linear::IDENTITY,
     ));
     if deviation > ROTATION_TOLERANCE {
         d.error(
-            joint.rotation_span,
+            span,
             format!(
-                "the rotation of joint `{}` is not orthonormal: the largest entry of |RᵀR − 1| is {} \
+                "the rotation of {what} is not orthonormal: the largest entry of |RᵀR − 1| is {} \
                  (at most {ROTATION_TOLERANCE:e} is accepted); give a rotation matrix whose rows are \
                  orthogonal unit vectors, rpy(r, p, y) or axis_angle([x, y, z], angle)",
-                joint.name.text,
                 computed(deviation)
             ),
         );
     } else if linear::determinant(r) < 0.0 {
         d.error(
-            joint.rotation_span,
+            span,
             format!(
-                "the rotation of joint `{}` has determinant {}: it is a reflection, not a rotation",
-                joint.name.text,
+                "the rotation of {what} has determinant {}: it is a reflection, not a rotation",
                 computed(linear::determinant(r))
             ),
         );
@@ -624,6 +632,84 @@ fn loads_act_on_declared_bodies(mechanism: &syntax::Mechanism, d: &mut Diagnosti
                 format!(
                     "load `{}` acts on unknown body `{}`",
                     load.name.text, load.body.text
+                ),
+            );
+        }
+    }
+}
+
+/// Rule: a frame is attached to a declared body or the ground, is named unlike every body
+/// (each body is a frame of its own, named after it) and every other frame, and has a
+/// proper rotation; `frames: [..]` names frames.
+fn frames_are_well_placed(mechanism: &syntax::Mechanism, resolved: &Resolved, d: &mut Diagnostics) {
+    let body_names: Vec<&str> = mechanism
+        .bodies
+        .iter()
+        .map(|b| b.name.text.as_str())
+        .collect();
+    let mut seen: HashMap<&str, &Name> = HashMap::new();
+    for frame in &resolved.frames {
+        let body = frame.body.text.as_str();
+        if body != GROUND && !body_names.contains(&body) {
+            let hint = match crate::syntax::closest(body, &body_names) {
+                Some(near) => format!("; did you mean `{near}`?"),
+                None => " (the fixed frame is `ground`)".to_owned(),
+            };
+            d.error(
+                frame.body.span,
+                format!(
+                    "frame `{}` is on unknown body `{body}`{hint}",
+                    frame.name.text
+                ),
+            );
+        }
+        let name = frame.name.text.as_str();
+        if body_names.contains(&name) || name == GROUND {
+            d.error(
+                frame.name.span,
+                format!(
+                    "a frame cannot be named `{name}`: every body is a frame named after it (and \
+                     `ground` is the world); choose another name"
+                ),
+            );
+        } else if let Some(first) = seen.get(name) {
+            d.error(
+                frame.name.span,
+                format!("a frame named `{name}` is already declared"),
+            );
+            d.error(first.span, format!("frame `{name}` is first declared here"));
+        } else {
+            seen.insert(name, &frame.name);
+        }
+        rotation_is_proper_at(
+            &frame.rotation,
+            frame.rotation_span,
+            &format!("frame `{name}`"),
+            d,
+        );
+    }
+    let mut selected_before: Vec<&str> = Vec::new();
+    for selected in mechanism.frame_selection.iter().flatten() {
+        let text = selected.text.as_str();
+        if selected_before.contains(&text) {
+            d.error(selected.span, format!("`frames:` names `{text}` twice"));
+        }
+        selected_before.push(text);
+        if !seen.contains_key(text) && !body_names.contains(&text) {
+            let names: Vec<&str> = seen
+                .keys()
+                .copied()
+                .chain(body_names.iter().copied())
+                .collect();
+            let hint = match crate::syntax::closest(text, &names) {
+                Some(near) => format!("; did you mean `{near}`?"),
+                None => String::new(),
+            };
+            d.error(
+                selected.span,
+                format!(
+                    "`frames:` names `{text}`, which is neither a declared `frame` nor a \
+                     body{hint}"
                 ),
             );
         }

@@ -10,7 +10,10 @@ use super::linear::{self, Matrix3, Vector3};
 use super::resolved::Resolved;
 use super::rules::{self, GROUND};
 use super::value::{self, nominal3, Value, Vec3};
-use super::{Body, DeclaredBody, DeclaredJoint, Diagnostics, Joint, JointKind, Load, Model, Part};
+use super::{
+    Body, DeclaredBody, DeclaredFrame, DeclaredJoint, Diagnostics, Frame, Joint, JointKind, Load,
+    Model, Part,
+};
 use crate::syntax::{self, JointKind as Declared};
 use std::collections::HashMap;
 
@@ -48,6 +51,8 @@ pub(crate) fn build(
     let mut attached: Vec<Option<Attachment>> = vec![None; resolved.bodies.len()];
     let mut bodies: Vec<Body> = Vec::new();
     let (mut nq, mut nv) = (0, 0);
+    // Bodies welded through fixed joints, in depth-first order: the default frames.
+    let mut welded: Vec<usize> = Vec::new();
     for j in order {
         let joint = &resolved.joints[j];
         let parent = match joint.parent.text.as_str() {
@@ -84,6 +89,7 @@ pub(crate) fn build(
                     rotation,
                     translation,
                 });
+                welded.push(child);
                 continue;
             }
             (Declared::Revolute, Some((axis, _))) => JointKind::Revolute {
@@ -191,6 +197,22 @@ pub(crate) fn build(
         Some((at.body, at.rotation, at.translation))
     };
     let statics = super::statics::build(mechanism, resolved, &bodies, &locate, d);
+    let frames = frames(mechanism, resolved, &welded, &attached, &body_index)?;
+    if frames.is_empty() {
+        for name in mechanism.outputs.iter().flatten() {
+            if name.text.starts_with("frame_") {
+                d.error(
+                    name.span,
+                    format!(
+                        "`{}` gives the operational frames, and this mechanism has none: declare \
+                         one with `frame name: on body at [x, y, z];` (a body welded to another \
+                         through a fixed joint is a frame too)",
+                        name.text
+                    ),
+                );
+            }
+        }
+    }
     Some(Model {
         name: mechanism.name.clone(),
         visibility: mechanism.visibility.clone(),
@@ -200,15 +222,84 @@ pub(crate) fn build(
         outputs: resolved.outputs,
         bodies,
         loads,
+        frames,
         load_inputs: offset,
         nq,
         nv,
         declared_bodies,
         declared_joints,
+        declared_frames: resolved
+            .frames
+            .iter()
+            .map(|f| DeclaredFrame {
+                name: f.name.text.clone(),
+                body: f.body.text.clone(),
+                translation: f.translation,
+                rotation: f.rotation,
+            })
+            .collect(),
         skip_triangle_inequality: resolved.skip_triangle_inequality,
         source_files: Vec::new(),
         statics,
     })
+}
+
+/// The frames the frame outputs cover: the welded bodies, then the declared frames, or
+/// the frames `frames: [..]` lists (any of those, or a tree body), in its order. `None` if
+/// a name does not resolve (the rules have reported it).
+fn frames(
+    mechanism: &syntax::Mechanism,
+    resolved: &Resolved,
+    welded: &[usize],
+    attached: &[Option<Attachment>],
+    body_index: &HashMap<&str, usize>,
+) -> Option<Vec<Frame>> {
+    let body_frame = |declared: usize| -> Option<Frame> {
+        let at = attached[declared].clone()?;
+        let body = &resolved.bodies[declared];
+        Some(Frame {
+            name: body.name.text.clone(),
+            docs: body.docs.clone(),
+            body: at.body,
+            rotation_in_body: at.rotation,
+            origin_in_body: at.translation,
+        })
+    };
+    let declared_frame = |f: &super::resolved::ResolvedFrame| -> Option<Frame> {
+        let at = if f.body.text == GROUND {
+            Attachment {
+                body: None,
+                rotation: IDENTITY,
+                translation: zero3(),
+            }
+        } else {
+            attached[*body_index.get(f.body.text.as_str())?].clone()?
+        };
+        let translation = std::array::from_fn(|k| Value::constant(f.translation[k]));
+        Some(Frame {
+            name: f.name.text.clone(),
+            docs: f.docs.clone(),
+            body: at.body,
+            rotation_in_body: mat_mul(&at.rotation, &f.rotation),
+            origin_in_body: value::add(&value::rotate(&at.rotation, &translation), &at.translation),
+        })
+    };
+    match &mechanism.frame_selection {
+        None => welded
+            .iter()
+            .map(|&b| body_frame(b))
+            .chain(resolved.frames.iter().map(declared_frame))
+            .collect(),
+        Some(names) => names
+            .iter()
+            .map(
+                |name| match resolved.frames.iter().find(|f| f.name.text == name.text) {
+                    Some(f) => declared_frame(f),
+                    None => body_frame(*body_index.get(name.text.as_str())?),
+                },
+            )
+            .collect(),
+    }
 }
 
 fn unit(axis: [f64; 3]) -> [f64; 3] {

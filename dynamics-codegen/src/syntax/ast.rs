@@ -168,6 +168,10 @@ pub struct Mechanism {
     pub loads: Vec<Load>,
     /// Supports and loop-closing connections, in declaration order.
     pub constraints: Vec<Constraint>,
+    /// Operational frames, in declaration order.
+    pub frames: Vec<Frame>,
+    /// `frames: [..]`: the frames the frame outputs cover (every frame when absent).
+    pub frame_selection: Option<Vec<Name>>,
     /// `force_analysis: planar;` or `spatial;` (planar when absent).
     pub analysis: Option<(AnalysisPlane, Span)>,
     /// `isa: dispatch;` or `baseline;` (dispatch when absent).
@@ -439,4 +443,21 @@ pub struct Load {
     pub body: Name,
     /// The point of application in the body frame (the origin when absent).
     pub at: Option<Vector>,
+}
+
+/// `frame name: on body [at [x, y, z]] [rotation ..];`: an operational frame (a tool
+/// centre point, a foot, a camera) rigidly attached to a body, placed in the body's frame:
+/// x_body = R x_frame + p.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    /// Doc comments.
+    pub docs: Vec<String>,
+    /// The frame's name.
+    pub name: Name,
+    /// The body it is attached to, or `ground`.
+    pub body: Name,
+    /// Its origin p in the body frame (the body's origin when absent).
+    pub at: Option<Vector>,
+    /// Its rotation R in the body frame (the body's axes when absent).
+    pub rotation: Option<Rotation>,
 }

@@ -28,6 +28,8 @@ impl Parse for Mechanism {
             joints: Vec::new(),
             loads: Vec::new(),
             constraints: Vec::new(),
+            frames: Vec::new(),
+            frame_selection: None,
             analysis: None,
             isa: None,
         };
@@ -56,7 +58,7 @@ impl Parse for Mechanism {
             let keyword: Ident = input.parse().map_err(|e| {
                 syn::Error::new(
                     e.span(),
-                    "expected `pub struct Name;`, a setting (`gravity: ...;`), `body`, `joint`, `load` or `constraint`",
+                    "expected `pub struct Name;`, a setting (`gravity: ...;`), `body`, `joint`, `load`, `constraint` or `frame`",
                 )
             })?;
             match keyword.to_string().as_str() {
@@ -66,6 +68,7 @@ impl Parse for Mechanism {
                 "constraint" if input.peek(Ident) => {
                     mechanism.constraints.push(parse_constraint(input, docs)?)
                 }
+                "frame" if input.peek(Ident) => mechanism.frames.push(parse_frame(input, docs)?),
                 setting => {
                     if !input.peek(Token![:]) {
                         return Err(unknown_item(&keyword));
@@ -86,6 +89,7 @@ impl Parse for Mechanism {
                     match setting {
                         "gravity" => mechanism.gravity = Some(parse_gravity(input)?),
                         "outputs" => mechanism.outputs = Some(parse_name_list(input)?),
+                        "frames" => mechanism.frame_selection = Some(parse_name_list(input)?),
                         "allow" => mechanism.allow = parse_name_list(input)?,
                         "parameters" => mechanism.parameters = parse_parameters(input)?,
                         "urdf" => {
@@ -132,7 +136,7 @@ impl Parse for Mechanism {
                                 keyword.span(),
                                 format!(
                                     "unknown setting `{setting}`; {hint} {} (or `body`, `joint`, \
-                                     `load`, `constraint`)",
+                                     `load`, `constraint`, `frame`)",
                                     SETTINGS.join(", ")
                                 ),
                             ));
@@ -159,9 +163,10 @@ impl Parse for Mechanism {
 }
 
 /// The mechanism settings, `name: value;`, each given at most once.
-const SETTINGS: [&str; 8] = [
+const SETTINGS: [&str; 9] = [
     "gravity",
     "outputs",
+    "frames",
     "parameters",
     "allow",
     "urdf",
@@ -171,7 +176,7 @@ const SETTINGS: [&str; 8] = [
 ];
 
 /// The item keywords, each followed by a name.
-const ITEMS: [&str; 4] = ["body", "joint", "load", "constraint"];
+const ITEMS: [&str; 5] = ["body", "joint", "load", "constraint", "frame"];
 
 /// A word at item level that is neither an item keyword followed by a name nor a setting
 /// followed by `:`: names itself and, for a typo, the keyword meant.
@@ -185,7 +190,7 @@ fn unknown_item(keyword: &Ident) -> syn::Error {
         format!("unknown item `{word}`; did you mean the setting `{near}: ...;`?")
     } else {
         format!(
-            "unknown item `{word}`; expected `body`, `joint`, `load`, `constraint` or a setting \
+            "unknown item `{word}`; expected `body`, `joint`, `load`, `constraint`, `frame` or a setting \
              `name: value;` ({})",
             SETTINGS.join(", ")
         )
@@ -872,6 +877,50 @@ fn parse_load(input: ParseStream, docs: Vec<String>) -> syn::Result<Load> {
         kind,
         body,
         at,
+    })
+}
+
+/// `frame name: on body [at [x, y, z]] [rotation ..];`.
+fn parse_frame(input: ParseStream, docs: Vec<String>) -> syn::Result<Frame> {
+    let name = parse_name(input)?;
+    input.parse::<Token![:]>()?;
+    let on: Ident = input.parse()?;
+    if on != "on" {
+        return Err(syn::Error::new(
+            on.span(),
+            "expected `on <body>`: a frame is attached to a body (or `ground`)",
+        ));
+    }
+    let body = parse_name(input)?;
+    let (mut at, mut rotation) = (None, None);
+    while !input.peek(Token![;]) {
+        let word: Ident = input.parse().map_err(|e| {
+            syn::Error::new(e.span(), "expected `at [x, y, z]`, `rotation ...` or `;`")
+        })?;
+        match word.to_string().as_str() {
+            "at" if at.is_none() => at = Some(parse_vector(input)?),
+            "rotation" if rotation.is_none() => rotation = Some(parse_rotation(input)?),
+            "at" | "rotation" => {
+                return Err(syn::Error::new(
+                    word.span(),
+                    format!("`{word}` is given twice"),
+                ))
+            }
+            _ => {
+                return Err(syn::Error::new(
+                    word.span(),
+                    "expected `at [x, y, z]`, `rotation ...` or `;`",
+                ))
+            }
+        }
+    }
+    input.parse::<Token![;]>()?;
+    Ok(Frame {
+        docs,
+        name,
+        body,
+        at,
+        rotation,
     })
 }
 
