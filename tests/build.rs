@@ -7,6 +7,10 @@
 //!   calls `callback!(test_name, Type, p: yes|no, loads: yes|no, [functions])` once per
 //!   tree, `functions` the names of the functions generated for it.
 //!
+//! - `$OUT_DIR/random_frame_trees.rs`: four random trees with bodies welded through fixed
+//!   joints and declared frames (on moving bodies, welded bodies and the ground), free roots
+//!   among them, generating every kinematics output, for `generated_random_frames`.
+//!
 //! The trees are fixed (a deterministic generator with a fixed seed), spread over 1 to 30
 //! joints: random parents (trees, one chain), revolute and prismatic joints about random and
 //! coordinate axes, random placements, valid random inertias (principal moments from
@@ -322,6 +326,97 @@ fn tree(name: &str, spec: &Spec, rng: &mut Rng) -> String {
     s
 }
 
+/// The kinematics outputs the frame trees generate.
+const FRAME_OUTPUTS: &str = "frame_placements, frame_jacobians, frame_jacobians_local, \
+    frame_velocities, frame_acceleration_biases, centroidal_bias, joint_placements, \
+    joint_jacobians, joint_velocities, joint_acceleration_biases, center_of_mass, \
+    center_of_mass_jacobian, centroidal_momentum_matrix";
+
+/// A random tree with welded bodies and declared frames, for `generated_random_frames`:
+/// `joints` moving joints (a free root when `free_root`), a welded body on every third
+/// body, and frames on random bodies, on welded ones and on the ground.
+fn frame_tree(name: &str, joints: usize, free_root: bool, rng: &mut Rng) -> String {
+    let mut s = String::new();
+    let mut line = |text: String| writeln!(s, "{text}").expect("writing to a String");
+    line("::dynamics_runtime::mechanism! {".into());
+    line(format!(
+        "    /// A random tree with frames written by `tests/build.rs`: {joints} joints{}.",
+        if free_root { ", a free root" } else { "" }
+    ));
+    line(format!("    pub struct {name};"));
+    line(format!("    outputs: [{FRAME_OUTPUTS}];"));
+    let welded: Vec<usize> = (0..joints).filter(|k| k % 3 == 2).collect();
+    let body = |s: &mut Vec<String>, name: String, rng: &mut Rng| {
+        let [d1, d2, d3] = rng.vector(0.0005, 0.05);
+        s.push(format!(
+            "    body {name} {{ mass: {:?}, com: {}, inertia: principal({}, rotation: {}) }}",
+            rng.uniform(0.1, 5.0),
+            vector(rng.vector(-0.3, 0.3)),
+            vector([d2 + d3, d1 + d3, d1 + d2]),
+            rpy(rng.vector(-3.0, 3.0))
+        ));
+    };
+    let mut items = Vec::new();
+    for k in 0..joints {
+        body(&mut items, format!("b{k}"), rng);
+    }
+    for &k in &welded {
+        body(&mut items, format!("w{k}"), rng);
+    }
+    for k in 0..joints {
+        if k == 0 && free_root {
+            items.push("    joint j0: free(ground -> b0);".into());
+            continue;
+        }
+        let parent = match (k, free_root) {
+            (0, _) => "ground".to_owned(),
+            (_, true) => format!("b{}", rng.below(k)),
+            _ => match rng.below(k + 1) {
+                0 => "ground".to_owned(),
+                p => format!("b{}", p - 1),
+            },
+        };
+        let kind = if rng.chance(0.25) {
+            "prismatic"
+        } else {
+            "revolute"
+        };
+        items.push(format!(
+            "    joint j{k}: {kind}({parent} -> b{k}) {{ axis: {}, at: {}, rotation: {} }}",
+            axis(rng),
+            vector(rng.vector(-0.5, 0.5)),
+            rpy(rng.vector(-3.0, 3.0))
+        ));
+    }
+    for &k in &welded {
+        items.push(format!(
+            "    joint weld{k}: fixed(b{k} -> w{k}) {{ at: {}, rotation: {} }}",
+            vector(rng.vector(-0.3, 0.3)),
+            rpy(rng.vector(-3.0, 3.0))
+        ));
+    }
+    for f in 0..joints.div_ceil(2) {
+        let on = match f % 4 {
+            0 if !welded.is_empty() => format!("w{}", welded[rng.below(welded.len())]),
+            3 => "ground".to_owned(),
+            _ => format!("b{}", rng.below(joints)),
+        };
+        items.push(format!(
+            "    frame f{f}: on {on} at {} rotation {};",
+            vector(rng.vector(-0.4, 0.4)),
+            rpy(rng.vector(-3.0, 3.0))
+        ));
+    }
+    for item in items {
+        line(item);
+    }
+    line("}".into());
+    s
+}
+
+/// The frame trees: (moving joints, free root).
+const FRAME_TREES: [(usize, bool); 4] = [(3, false), (8, true), (14, false), (22, true)];
+
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     let out = std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR");
@@ -361,4 +456,18 @@ fn main() {
     )
     .expect("writing to a String");
     std::fs::write(out.join("random_trees.rs"), all).expect("OUT_DIR writable");
+
+    let mut rng = Rng(0xf4a3_e5_2026);
+    let mut frames =
+        String::from("// Written by tests/build.rs: the random trees with frames.\n\n");
+    for (joints, free_root) in FRAME_TREES {
+        frames.push_str(&frame_tree(
+            &format!("FrameTree{joints:02}"),
+            joints,
+            free_root,
+            &mut rng,
+        ));
+        frames.push('\n');
+    }
+    std::fs::write(out.join("random_frame_trees.rs"), frames).expect("OUT_DIR writable");
 }
