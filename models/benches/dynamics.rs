@@ -17,19 +17,30 @@
 //! (1 to 30 links) are timed for their three outputs (inverse dynamics, mass matrix, forward
 //! dynamics): `cargo bench -p models --bench dynamics -- '^Chain'`. The linkages of
 //! `models::linkages` are timed for their force analysis and loop-closure functions
-//! (generated code only). The Pinocchio comparison
+//! (generated code only). The kinematics of the UR5, the Panda and the quadruped
+//! (`models::kinematics`: `Ur5Kinematics`, `PandaKinematics`, `QuadrupedKinematics`) are
+//! timed on the states of their dynamics twins, generated code only:
+//! `<Name>Kinematics/<output>/generated` for each output, and
+//! `<Name>Kinematics/joint_velocities+joint_acceleration_biases/generated` and
+//! `<Name>Kinematics/joint_jacobians+joint_acceleration_biases/generated` for the pairs of
+//! calls set beside Pinocchio's `forwardKinematics(q, v, a)` and
+//! `computeJointJacobiansTimeVariation`. The Pinocchio comparison
 //! (`benches/pinocchio/compare.sh`) reads the medians of the same benchmarks.
 //!
 //! The quadruped's foot loads are zero in the generated calls and absent (`None`) in the
 //! reference calls. Before timing, each model's generated outputs are checked against the
 //! values stored with the states (Pinocchio's for the anchors, the reference's for the
-//! quadruped), and the states' fingerprint is printed for the comparison script.
+//! quadruped), and the states' fingerprint is printed for the comparison script. The
+//! kinematics are checked against Pinocchio's values for the same states
+//! (`tests/data/pinocchio_ext/<model>_kinematics.json`) for the arms, and against the
+//! runtime reference's body poses and centre of mass of `Quadruped` for the quadruped.
 
 use criterion::{criterion_group, criterion_main, Criterion, SamplingMode};
 use dynamics_runtime::Wrench;
 use dynamics_runtime::{JointKind, Mechanism, Model, Reference};
 use models::anchors::{DoublePendulum, Panda, Pendulum, Planar3, Ur5};
 use models::chains::{Chain1, Chain10, Chain15, Chain2, Chain20, Chain25, Chain3, Chain30, Chain5};
+use models::kinematics::{PandaKinematics, QuadrupedKinematics, Ur5Kinematics};
 use models::linkages::{
     FourBar, FourBarLoaded, FourBarRockerDriven, GyroscopicRotor, OverhungRotor, SliderCrank,
     SupportedBeam,
@@ -523,6 +534,297 @@ bench_model!(planar3_urdf, Planar3Urdf, PLANAR3, [], all, checked);
 bench_model!(ur5_urdf, Ur5Urdf, UR5, [], all, checked);
 bench_model!(panda_urdf, PandaUrdf, PANDA, [], all, checked);
 
+// ---- kinematics -------------------------------------------------------------------------
+
+/// Pinocchio's kinematics of the anchor arms at the states of their `samples` (same q and
+/// v, in the same order), to check the generated kinematics against before timing them.
+const UR5_KINEMATICS: Source = Source::Json(
+    "tests/data/pinocchio_ext/ur5_kinematics.json",
+    include_str!("../../tests/data/pinocchio_ext/ur5_kinematics.json"),
+);
+const PANDA_KINEMATICS: Source = Source::Json(
+    "tests/data/pinocchio_ext/panda_kinematics.json",
+    include_str!("../../tests/data/pinocchio_ext/panda_kinematics.json"),
+);
+
+/// What the generated kinematics are checked against before they are timed.
+enum KinematicsCheck {
+    /// Pinocchio's values stored for the same states (a `Source::Json` in the layout of
+    /// `tests/data/pinocchio_ext/<model>_kinematics.json`).
+    Pinocchio(Source),
+    /// The runtime reference's body poses and centre of mass of the dynamics twin.
+    Reference(Model),
+}
+
+/// Each body's pose in the world, (R, p), as `joint_placements` returns them.
+type Placements<const NB: usize> = [([[f64; 3]; 3], [f64; 3]); NB];
+
+/// A kinematics mechanism's generated functions at f64, for the checks.
+struct KinematicsFns<const NQ: usize, const NV: usize, const NB: usize> {
+    placements: fn(&[f64; NQ]) -> Placements<NB>,
+    jacobians: fn(&[f64; NQ]) -> [[[f64; NV]; 6]; NB],
+    velocities: fn(&[f64; NQ], &[f64; NV]) -> [[f64; 6]; NB],
+    biases: fn(&[f64; NQ], &[f64; NV]) -> [[f64; 6]; NB],
+    com: fn(&[f64; NQ]) -> [f64; 3],
+    com_jacobian: fn(&[f64; NQ]) -> [[f64; NV]; 3],
+    centroidal: fn(&[f64; NQ]) -> [[f64; NV]; 6],
+}
+
+/// The rows of a stored matrix (a JSON array of arrays), flattened.
+fn rows(value: &Value, what: &str) -> Vec<f64> {
+    value
+        .as_array()
+        .unwrap_or_else(|| panic!("{what}: not an array"))
+        .iter()
+        .flat_map(|row| numbers(row, what))
+        .collect()
+}
+
+/// Checks the generated kinematics on every state, so that the benchmark times the robot
+/// that Pinocchio times.
+fn check_kinematics<const NQ: usize, const NV: usize, const NB: usize>(
+    name: &str,
+    states: &[State<NQ, NV, 0>],
+    fns: &KinematicsFns<NQ, NV, NB>,
+    against: &KinematicsCheck,
+) {
+    match against {
+        KinematicsCheck::Pinocchio(Source::Json(path, text)) => {
+            let doc: Value = serde_json::from_str(text).unwrap_or_else(|e| panic!("{path}: {e}"));
+            let samples = doc["samples"]
+                .as_array()
+                .unwrap_or_else(|| panic!("{path}: no samples"));
+            assert_eq!(samples.len(), states.len(), "{path}: one sample per state");
+            for (s, stored) in states.iter().zip(samples) {
+                let (q, v): ([f64; NQ], [f64; NV]) =
+                    (array(&stored["q"], path), array(&stored["v"], path));
+                assert!(
+                    q == s.q && v == s.v,
+                    "{path}: its states are not the benchmark's"
+                );
+                let placements = (fns.placements)(&s.q);
+                let jacobians = (fns.jacobians)(&s.q);
+                let velocities = (fns.velocities)(&s.q, &s.v);
+                let biases = (fns.biases)(&s.q, &s.v);
+                let stored_placements = stored["joint_placements"]
+                    .as_array()
+                    .unwrap_or_else(|| panic!("{path}: no joint_placements"));
+                assert_eq!(stored_placements.len(), NB, "{name}: one body per joint");
+                for (b, p) in stored_placements.iter().enumerate() {
+                    let (rotation, translation) = &placements[b];
+                    check_stored(
+                        name,
+                        "joint_placements R",
+                        rotation.as_flattened(),
+                        &rows(&p["rotation"], path),
+                    );
+                    check_stored(
+                        name,
+                        "joint_placements p",
+                        translation,
+                        &numbers(&p["translation"], path),
+                    );
+                    check_stored(
+                        name,
+                        "joint_jacobians",
+                        jacobians[b].as_flattened(),
+                        &rows(&stored["joint_jacobians_world"][b], path),
+                    );
+                    check_stored(
+                        name,
+                        "joint_acceleration_biases",
+                        &biases[b],
+                        &numbers(
+                            &stored["joint_jacobian_time_derivative_times_v_world"][b],
+                            path,
+                        ),
+                    );
+                    // Pinocchio's velocities are in the body frame: turned to world axes.
+                    let local = numbers(&stored["joint_velocities_local"][b], path);
+                    let world: Vec<f64> = (0..6)
+                        .map(|r| {
+                            (0..3)
+                                .map(|c| rotation[r % 3][c] * local[3 * (r / 3) + c])
+                                .sum()
+                        })
+                        .collect();
+                    check_stored(name, "joint_velocities", &velocities[b], &world);
+                }
+                check_stored(
+                    name,
+                    "center_of_mass",
+                    &(fns.com)(&s.q),
+                    &numbers(&stored["center_of_mass"], path),
+                );
+                check_stored(
+                    name,
+                    "center_of_mass_jacobian",
+                    (fns.com_jacobian)(&s.q).as_flattened(),
+                    &rows(&stored["com_jacobian"], path),
+                );
+                check_stored(
+                    name,
+                    "centroidal_momentum_matrix",
+                    (fns.centroidal)(&s.q).as_flattened(),
+                    &rows(&stored["centroidal_momentum_matrix"], path),
+                );
+            }
+        }
+        KinematicsCheck::Pinocchio(Source::Random(_)) => {
+            panic!("{name}: Pinocchio's kinematics come from a file")
+        }
+        KinematicsCheck::Reference(model) => {
+            let mut reference = Reference::<f64>::new(model);
+            for s in states {
+                let com = reference
+                    .center_of_mass(&s.q)
+                    .unwrap_or_else(|e| panic!("{name}: {e}"));
+                check_stored(name, "center_of_mass", &(fns.com)(&s.q), com.as_slice());
+                let poses = reference
+                    .body_poses(&s.q)
+                    .unwrap_or_else(|e| panic!("{name}: {e}"));
+                assert_eq!(poses.len(), NB, "{name}: one pose per body");
+                let placements = (fns.placements)(&s.q);
+                for (pose, (rotation, translation)) in poses.iter().zip(&placements) {
+                    let rows: Vec<f64> = (0..3)
+                        .flat_map(|r| (0..3).map(move |c| pose.rotation_in_world[(r, c)]))
+                        .collect();
+                    check_stored(name, "joint_placements R", rotation.as_flattened(), &rows);
+                    check_stored(
+                        name,
+                        "joint_placements p",
+                        translation,
+                        pose.origin_in_world.as_slice(),
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The kinematics outputs timed, each alone: `<Name>/<output>/generated`.
+///
+/// EXTENSION POINT: when the frame outputs exist, add `frame_placements` (q),
+/// `frame_jacobians` (q), `frame_acceleration_biases` (q, v) and `centroidal_bias` (q, v)
+/// to this list, to `kinematics_call!` below and to the `outputs` of `models::kinematics`
+/// (with the frames of `benches/pinocchio/frames.json`). `compare.sh` already looks for
+/// `<Name>Kinematics/frame_placements/generated` and the others, and prints "—" until they
+/// exist.
+const KINEMATICS: [&str; 7] = [
+    "joint_placements",
+    "joint_velocities",
+    "joint_acceleration_biases",
+    "joint_jacobians",
+    "center_of_mass",
+    "center_of_mass_jacobian",
+    "centroidal_momentum_matrix",
+];
+
+/// The generated call of one kinematics output.
+macro_rules! kinematics_call {
+    ($m:ty, joint_placements, $s:ident) => {
+        <$m>::joint_placements(&$s.q)
+    };
+    ($m:ty, joint_jacobians, $s:ident) => {
+        <$m>::joint_jacobians(&$s.q)
+    };
+    ($m:ty, joint_velocities, $s:ident) => {
+        <$m>::joint_velocities(&$s.q, &$s.v)
+    };
+    ($m:ty, joint_acceleration_biases, $s:ident) => {
+        <$m>::joint_acceleration_biases(&$s.q, &$s.v)
+    };
+    ($m:ty, center_of_mass, $s:ident) => {
+        <$m>::center_of_mass(&$s.q)
+    };
+    ($m:ty, center_of_mass_jacobian, $s:ident) => {
+        <$m>::center_of_mass_jacobian(&$s.q)
+    };
+    ($m:ty, centroidal_momentum_matrix, $s:ident) => {
+        <$m>::centroidal_momentum_matrix(&$s.q)
+    };
+}
+
+/// A kinematics mechanism's benchmarks: `bench_kinematics!(function, Type, states source,
+/// check)`: each output of [`KINEMATICS`] alone, then the two pairs of calls that stand
+/// for one Pinocchio call each (`forwardKinematics(q, v, a)` gives the velocities and the
+/// accelerations, `computeJointJacobiansTimeVariation` J and J̇), both results kept.
+macro_rules! bench_kinematics {
+    ($fn_name:ident, $m:ty, $source:expr, $check:expr) => {
+        fn $fn_name(c: &mut Criterion) {
+            const NQ: usize = <$m as Mechanism>::NQ;
+            const NV: usize = <$m as Mechanism>::NV;
+            let name = <$m as Mechanism>::NAME;
+            check_coverage::<$m>(&KINEMATICS);
+            let model = <$m>::model();
+            let states: Vec<State<NQ, NV, 0>> = states(name, &model, &$source);
+            let fns = KinematicsFns {
+                placements: <$m>::joint_placements::<f64>,
+                jacobians: <$m>::joint_jacobians::<f64>,
+                velocities: <$m>::joint_velocities::<f64>,
+                biases: <$m>::joint_acceleration_biases::<f64>,
+                com: <$m>::center_of_mass::<f64>,
+                com_jacobian: <$m>::center_of_mass_jacobian::<f64>,
+                centroidal: <$m>::centroidal_momentum_matrix::<f64>,
+            };
+            check_kinematics(name, &states, &fns, &$check);
+            let mut group = c.benchmark_group(name);
+            group.sampling_mode(SamplingMode::Flat);
+            bench_kinematics!(@each group, $m, states, [
+                joint_placements, joint_velocities, joint_acceleration_biases, joint_jacobians,
+                center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix,
+            ]);
+            group.bench_function("joint_velocities+joint_acceleration_biases/generated", |b| {
+                b.iter_custom(|iters| {
+                    cycle(&states, iters, |s| {
+                        (
+                            kinematics_call!($m, joint_velocities, s),
+                            kinematics_call!($m, joint_acceleration_biases, s),
+                        )
+                    })
+                })
+            });
+            group.bench_function("joint_jacobians+joint_acceleration_biases/generated", |b| {
+                b.iter_custom(|iters| {
+                    cycle(&states, iters, |s| {
+                        (
+                            kinematics_call!($m, joint_jacobians, s),
+                            kinematics_call!($m, joint_acceleration_biases, s),
+                        )
+                    })
+                })
+            });
+            group.finish();
+        }
+    };
+    (@each $group:ident, $m:ty, $states:ident, [$($out:ident),* $(,)?]) => {
+        $(
+            $group.bench_function(concat!(stringify!($out), "/generated"), |b| {
+                b.iter_custom(|iters| cycle(&$states, iters, |s| kinematics_call!($m, $out, s)))
+            });
+        )*
+    };
+}
+
+bench_kinematics!(
+    ur5_kinematics,
+    Ur5Kinematics,
+    UR5,
+    KinematicsCheck::Pinocchio(UR5_KINEMATICS)
+);
+bench_kinematics!(
+    panda_kinematics,
+    PandaKinematics,
+    PANDA,
+    KinematicsCheck::Pinocchio(PANDA_KINEMATICS)
+);
+bench_kinematics!(
+    quadruped_kinematics,
+    QuadrupedKinematics,
+    QUADRUPED,
+    KinematicsCheck::Reference(Quadruped::model())
+);
+
 /// The linkages (`models::linkages`): `<Model>/force_analysis/generated` and, for the closed
 /// loops, `<Model>/constraint_{residual,jacobian,bias}/generated`, on 20 seeded random
 /// states. Generated code only: the runtime reference has no force analysis. The states need
@@ -683,6 +985,11 @@ mod groups {
         config = config();
         targets = pendulum_urdf, double_pendulum_urdf, planar3_urdf, ur5_urdf, panda_urdf
     }
+    criterion_group! {
+        name = kinematics;
+        config = config();
+        targets = ur5_kinematics, panda_kinematics, quadruped_kinematics
+    }
 }
 
 criterion_main!(
@@ -691,5 +998,6 @@ criterion_main!(
     groups::seed,
     groups::chains,
     groups::linkages,
-    groups::urdf_twins
+    groups::urdf_twins,
+    groups::kinematics
 );

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the anchor mechanisms (models/src/anchors.rs) and their URDF twins (models/urdf/)
-from the numbers of the Pinocchio test vectors in ../shared/anchors/pinocchio/vectors.
+from the numbers of the Pinocchio test vectors in tests/data/pinocchio/.
 
 Run from the repository root: python3 models/tools/anchor_models.py
 The numbers are the published model parameters; the text is ours.

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The generated code against Pinocchio, side by side: one table of ns/call and speedups.
+# The generated code against Pinocchio, side by side: tables of ns/call and speedups, one
+# for the dynamics and one for the kinematics.
 #
 #   bash models/benches/pinocchio/compare.sh [--quick] [--native] [--models "ur5 panda quadruped"]
 #
@@ -16,13 +17,28 @@
 #      the 20 samples of tests/data/pinocchio/<model>.json, and of quadruped.json here.
 #      Both sides make one call per state, the states in turn, on one thread, and report
 #      the median over repetitions; the script checks that both read bit-identical states.
-#      It goes model by model, Pinocchio then ours, so a change of the machine's load
-#      between the two sides of a ratio is unlikely; the load average of each is printed;
-#   5. prints the table (also written to build/comparison.md).
-# Pinocchio's crba and aba are timed in both of its conventions and the faster one is
-# compared. The quadruped's foot loads are zero for the generated code and Pinocchio gets no
-# external forces. Timings of a busy machine are noisy: the load average is printed with
-# the table. --quick shortens both sides' measurements (for trying the script, not for
+#      It goes model by model, Pinocchio then ours, first the dynamics and then (UR5,
+#      Panda and quadruped only) the kinematics, so a change of the machine's load between
+#      the two sides of a ratio is unlikely; the load average of each is printed;
+#   5. prints the tables (also written to build/comparison.md).
+# Dynamics: Pinocchio's crba and aba are timed in both of its conventions and the faster one
+# is compared. The quadruped's foot loads are zero for the generated code and Pinocchio gets
+# no external forces.
+# Kinematics: each Pinocchio call beside the generated function(s) a user would call
+# instead (models/src/kinematics.rs): forwardKinematics(q) ~ joint_placements;
+# forwardKinematics(q, v, a) ~ joint_velocities + joint_acceleration_biases (ours gives
+# v and J̇v; Pinocchio also gives the accelerations for a); computeJointJacobians ~
+# joint_jacobians; computeJointJacobiansTimeVariation ~ joint_jacobians +
+# joint_acceleration_biases (J and J̇v; Pinocchio computes J and J̇); centerOfMass ~
+# center_of_mass; jacobianCenterOfMass ~ center_of_mass_jacobian; ccrba ~
+# centroidal_momentum_matrix. Rows with Pinocchio only, ours "—" until the functions exist:
+# forwardKinematics + updateFramePlacements ~ frame_placements; computeJointJacobians +
+# getFrameJacobian per frame ~ frame_jacobians; forwardKinematics(q, v, 0) +
+# getFrameClassicalAcceleration per frame ~ frame_acceleration_biases; dccrba ~
+# centroidal_bias. The frames are those of the arms' URDFs listed in frames.json (every
+# BODY frame whose parent is a fixed joint); the quadruped has none, its frame rows are
+# skipped. Timings of a busy machine are noisy: the load average is printed with each
+# table. --quick shortens both sides' measurements (for trying the script, not for
 # figures). --native builds the generated code for this CPU too (RUSTFLAGS
 # "-C target-cpu=native", in target/native), as Pinocchio is always built (-march=native);
 # without it ours is built for baseline x86-64.
@@ -48,22 +64,33 @@ while [ $# -gt 0 ]; do
   shift
 done
 
-# The model files and the benchmarks' names, in the order of $MODELS.
+# The model files and the benchmarks' names, in the order of $MODELS; the kinematics
+# mechanisms (models/src/kinematics.rs) of the models that have one, "-" for the others.
 FILES=()
 NAMES=()
+KINEMATICS=()
 for m in $MODELS; do
+  k=-
   case "$m" in
     pendulum) f=tests/data/pinocchio/pendulum.json; n=Pendulum ;;
     double_pendulum) f=tests/data/pinocchio/double_pendulum.json; n=DoublePendulum ;;
     planar3) f=tests/data/pinocchio/planar3.json; n=Planar3 ;;
-    ur5) f=tests/data/pinocchio/ur5.json; n=Ur5 ;;
-    panda) f=tests/data/pinocchio/panda.json; n=Panda ;;
-    quadruped) f="$HERE/quadruped.json"; n=Quadruped ;;
+    ur5) f=tests/data/pinocchio/ur5.json; n=Ur5; k=Ur5Kinematics ;;
+    panda) f=tests/data/pinocchio/panda.json; n=Panda; k=PandaKinematics ;;
+    quadruped) f="$HERE/quadruped.json"; n=Quadruped; k=QuadrupedKinematics ;;
     *) echo "compare.sh: unknown model $m (pendulum double_pendulum planar3 ur5 panda quadruped)" >&2; exit 2 ;;
   esac
   FILES+=("$f")
   NAMES+=("$n")
+  KINEMATICS+=("$k")
 done
+# The generated kinematics benchmarks (benches/dynamics.rs), as a regex alternation: each
+# function alone, the pairs timed as one call each, and the frame outputs that do not exist
+# yet (criterion matches none of those; compare.sh prints "—" for them).
+KIN_OUTPUTS='joint_placements|joint_velocities|joint_acceleration_biases|joint_jacobians'
+KIN_OUTPUTS+='|joint_velocities\+joint_acceleration_biases|joint_jacobians\+joint_acceleration_biases'
+KIN_OUTPUTS+='|center_of_mass|center_of_mass_jacobian|centroidal_momentum_matrix'
+KIN_OUTPUTS+='|frame_placements|frame_jacobians|frame_acceleration_biases|centroidal_bias'
 
 STEP="starting"
 fail() { echo "compare.sh: FAILED while $STEP${1:+: $1}" >&2; exit 1; }
@@ -159,38 +186,49 @@ if [ -d "$CRITERION" ]; then
 fi
 
 # Model by model, Pinocchio then the generated code, so that the two sides of each ratio
-# are measured within a minute of each other.
+# are measured within a minute of each other: the dynamics, then the kinematics.
 : > "$HERE/build/pinocchio.tsv"
 : > "$HERE/build/criterion.log"
 : > "$HERE/build/load.tsv"
 for i in "${!FILES[@]}"; do
   m="$(echo $MODELS | cut -d' ' -f$((i + 1)))"
-  LOAD="$(cut -d' ' -f1-3 /proc/loadavg)"
-  step "timing $m: Pinocchio (load average $LOAD)"
-  printf '%s\tpinocchio\t%s\n' "$m" "$LOAD" >> "$HERE/build/load.tsv"
-  "$HERE/build/timing" "${PIN_ARGS[@]}" "${FILES[$i]}" >> "$HERE/build/pinocchio.tsv" ||
-    fail "the timing program failed on ${FILES[$i]} (its message is above)"
-  LOAD="$(cut -d' ' -f1-3 /proc/loadavg)"
-  step "timing $m: generated code (load average $LOAD)"
-  printf '%s\tgenerated\t%s\n' "$m" "$LOAD" >> "$HERE/build/load.tsv"
-  REGEX="^${NAMES[$i]}/(inverse_dynamics|mass_matrix|bias|gravity|forward_dynamics|coriolis_matrix)/generated\$"
-  cargo bench -q -p models --bench dynamics -- "${CRIT_ARGS[@]}" --save-baseline "$BASELINE" "$REGEX" \
-    >> "$HERE/build/criterion.log" 2>&1 ||
-    { tail -30 "$HERE/build/criterion.log" >&2; fail "cargo bench failed (log: build/criterion.log)"; }
+  SECTIONS=(dynamics)
+  if [ "${KINEMATICS[$i]}" != - ]; then SECTIONS+=(kinematics); fi
+  for group in "${SECTIONS[@]}"; do
+    if [ "$group" = dynamics ]; then
+      REGEX="^${NAMES[$i]}/(inverse_dynamics|mass_matrix|bias|gravity|forward_dynamics|coriolis_matrix)/generated\$"
+    else
+      REGEX="^${KINEMATICS[$i]}/($KIN_OUTPUTS)/generated\$"
+    fi
+    LOAD="$(cut -d' ' -f1-3 /proc/loadavg)"
+    step "timing $m, $group: Pinocchio (load average $LOAD)"
+    printf '%s\tpinocchio\t%s\t%s\n' "$m" "$LOAD" "$group" >> "$HERE/build/load.tsv"
+    "$HERE/build/timing" "${PIN_ARGS[@]}" --group "$group" --frames "$HERE/frames.json" "${FILES[$i]}" \
+      >> "$HERE/build/pinocchio.tsv" ||
+      fail "the timing program failed on ${FILES[$i]} (its message is above)"
+    LOAD="$(cut -d' ' -f1-3 /proc/loadavg)"
+    step "timing $m, $group: generated code (load average $LOAD)"
+    printf '%s\tgenerated\t%s\t%s\n' "$m" "$LOAD" "$group" >> "$HERE/build/load.tsv"
+    cargo bench -q -p models --bench dynamics -- "${CRIT_ARGS[@]}" --save-baseline "$BASELINE" "$REGEX" \
+      >> "$HERE/build/criterion.log" 2>&1 ||
+      { tail -30 "$HERE/build/criterion.log" >&2; fail "cargo bench failed (log: build/criterion.log)"; }
+  done
 done
-printf 'end\t-\t%s\n' "$(cut -d' ' -f1-3 /proc/loadavg)" >> "$HERE/build/load.tsv"
+printf 'end\t-\t%s\tall\n' "$(cut -d' ' -f1-3 /proc/loadavg)" >> "$HERE/build/load.tsv"
 
 # ---- 5. the table -------------------------------------------------------------------------------
 step "joining the results"
+KIN_LIST="$(IFS=,; echo "${KINEMATICS[*]}")"
 CPU="$(LC_ALL=C lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1)"
 "$VENV/bin/python" - "$HERE/build" "$CRITERION" "$BASELINE" "$CPU" "$(nproc)" \
-  "$QUICK" "$(rustc --version), $RUST_BUILD" "$(g++ --version | head -1)" \
+  "$QUICK" "$(rustc --version), $RUST_BUILD" "$(g++ --version | head -1)" "$KIN_LIST" \
   $MODELS <<'PYTHON' || fail "could not join the two sides' results"
 import json, os, re, sys
 
-build, criterion, baseline, cpu, cores, quick, rustc, gxx, *models = sys.argv[1:]
+build, criterion, baseline, cpu, cores, quick, rustc, gxx, kinematics, *models = sys.argv[1:]
 NAMES = {"pendulum": "Pendulum", "double_pendulum": "DoublePendulum", "planar3": "Planar3",
          "ur5": "Ur5", "panda": "Panda", "quadruped": "Quadruped"}
+KINEMATICS = {m: k for m, k in zip(models, kinematics.split(",")) if k != "-"}
 LABELS = {"pendulum": "pendulum", "double_pendulum": "double pendulum", "planar3": "planar 3R",
           "ur5": "UR5", "panda": "Panda", "quadruped": "quadruped"}
 # Pinocchio algorithm, the faster of its conventions where it has two, ours.
@@ -204,14 +242,39 @@ ALGORITHMS = [("rnea", ["rnea"], "inverse_dynamics"),
 TARGETS = {"rnea": {"ur5": 8, "panda": 8, "quadruped": 5}, "crba": 5, "aba": 6,
            "computeGeneralizedGravity": 10, "computeCoriolisMatrix": 5}
 ROBOTS = {"ur5", "panda", "quadruped"}
+# Kinematics: the Pinocchio call as printed (N: the number of frames), its record in
+# timing's output, our generated benchmark (two functions joined by "+": one benchmark
+# calling both), and whether it must exist on our side (False: the frame outputs and
+# centroidal_bias, not generated yet, "—" until they are; a frame row without frames on
+# Pinocchio's side, the quadruped's, is left out).
+# EXTENSION POINT: nothing to change here when the frame outputs arrive; their benchmarks
+# (`<Name>Kinematics/frame_placements/generated`, ...) fill the "—".
+KIN_ROWS = [("forwardKinematics(q)", "forwardKinematics_q", "joint_placements", True, False),
+            ("forwardKinematics(q, v, a)", "forwardKinematics_qva",
+             "joint_velocities+joint_acceleration_biases", True, False),
+            ("computeJointJacobians", "computeJointJacobians", "joint_jacobians", True, False),
+            ("computeJointJacobiansTimeVariation", "computeJointJacobiansTimeVariation",
+             "joint_jacobians+joint_acceleration_biases", True, False),
+            ("centerOfMass", "centerOfMass", "center_of_mass", True, False),
+            ("jacobianCenterOfMass", "jacobianCenterOfMass", "center_of_mass_jacobian", True, False),
+            ("ccrba", "ccrba", "centroidal_momentum_matrix", True, False),
+            ("forwardKinematics + updateFramePlacements", "framePlacements", "frame_placements",
+             False, True),
+            ("computeJointJacobians + getFrameJacobian × N", "frameJacobians", "frame_jacobians",
+             False, True),
+            ("forwardKinematics(q, v, 0) + getFrameClassicalAcceleration × N",
+             "frameClassicalAccelerations", "frame_acceleration_biases", False, True),
+            ("dccrba", "dccrba", "centroidal_bias", False, False)]
 
-pin, pin_states, header = {}, {}, ""
+pin, pin_states, frames, header = {}, {}, {}, ""
 for line in open(os.path.join(build, "pinocchio.tsv")):
     f = line.rstrip("\n").split("\t")
     if line.startswith("#"):
         header = line[1:].strip()
     elif f[0] == "states":
         pin_states[f[1]] = f[3]
+    elif f[0] == "frames":
+        frames[f[1]] = int(f[2])
     elif f[0] == "time":
         pin[(f[1], f[2])] = float(f[3])
 
@@ -224,8 +287,8 @@ for m in re.finditer(r"^states (\w+) (\d+) ([0-9a-f]{16})", log, re.M):
 
 loads = {}
 for line in open(os.path.join(build, "load.tsv")):
-    model, side, load = line.rstrip("\n").split("\t")
-    loads[(model, side)] = load.split()[0]
+    model, side, load, group = line.rstrip("\n").split("\t")
+    loads[(model, side, group)] = load.split()[0]
 
 ours = {}
 for directory, _, files in os.walk(criterion):
@@ -236,9 +299,10 @@ for directory, _, files in os.walk(criterion):
 
 problems = []
 for m in models:
-    a, b = pin_states.get(m), ours_states.get(NAMES[m])
-    if a is None or b is None or a != b:
-        problems.append(f"{m}: the states differ (Pinocchio {a}, Rust {b})")
+    for name in [NAMES[m]] + ([KINEMATICS[m]] if m in KINEMATICS else []):
+        a, b = pin_states.get(m), ours_states.get(name)
+        if a is None or b is None or a != b:
+            problems.append(f"{m}: the states differ (Pinocchio {a}, Rust {name} {b})")
 rows, verdicts = [], []
 for m in models:
     for algorithm, variants, function in ALGORITHMS:
@@ -261,18 +325,38 @@ for m in models:
         note = " (WORLD)" if variant.endswith("_world") else ""
         rows.append((LABELS[m], f"{algorithm}{note}", function, o, p, speedup,
                      "" if target is None else f"≥ {target}×", verdict))
+kin_rows = []
+for m in models:
+    if m not in KINEMATICS:
+        continue
+    for call, record, function, required, per_frame in KIN_ROWS:
+        if per_frame and not frames.get(m):
+            continue
+        p = pin.get((m, record))
+        o = ours.get(f"{KINEMATICS[m]}/{function}/generated")
+        if p is None or (required and o is None):
+            problems.append(f"{m} {call}: no timing "
+                            f"({'Pinocchio' if p is None else KINEMATICS[m] + '/' + function})")
+            continue
+        kin_rows.append((LABELS[m], call.replace("× N", f"× {frames.get(m, 0)}"),
+                         function.replace("+", " + "), o, p))
 if problems:
     print("compare.sh: " + "; ".join(problems), file=sys.stderr)
     sys.exit(1)
 
+def load_list(group, which):
+    return ", ".join(f"{LABELS[m]} {loads.get((m, 'pinocchio', group), '?')}/"
+                     f"{loads.get((m, 'generated', group), '?')}" for m in which)
+
 out = []
-load_list = ", ".join(f"{LABELS[m]} {loads.get((m, 'pinocchio'), '?')}/{loads.get((m, 'generated'), '?')}"
-                      for m in models)
 out.append(f"Machine: {cpu}, {cores} cores. 1-minute load average when each side started "
-           f"(Pinocchio/generated): {load_list}; at the end {loads.get(('end', '-'), '?').split()[0]}.")
+           f"(Pinocchio/generated): {load_list('dynamics', models)}; at the end "
+           f"{loads.get(('end', '-', 'all'), '?')}.")
 out.append(f"{header}; {gxx}. Generated code: {rustc}, criterion median of flat samples.")
 if quick == "1":
     out.append("QUICK RUN (--quick): short measurements, not for figures.")
+out.append("")
+out.append("### Dynamics")
 out.append("")
 out.append("| model | Pinocchio | ours | ours ns | Pinocchio ns | speedup | target | |")
 out.append("| --- | --- | --- | ---: | ---: | ---: | ---: | --- |")
@@ -281,6 +365,25 @@ for label, algorithm, function, o, p, s, target, verdict in rows:
 out.append("")
 out.append("speedup = Pinocchio ns / ours ns (medians, same states, one thread). crba and aba: the faster of")
 out.append("Pinocchio's LOCAL and WORLD conventions. Quadruped: foot loads zero, no external forces in Pinocchio.")
+if kin_rows:
+    which = [m for m in models if m in KINEMATICS]
+    out.append("")
+    out.append("### Kinematics")
+    out.append("")
+    out.append("1-minute load average when each side of the kinematics started (Pinocchio/generated): "
+               f"{load_list('kinematics', which)}.")
+    out.append("")
+    out.append("| model | Pinocchio | ours | ours ns | Pinocchio ns | speedup |")
+    out.append("| --- | --- | --- | ---: | ---: | ---: |")
+    for label, call, function, o, p in kin_rows:
+        ours_ns, speedup = ("—", "—") if o is None else (f"{o:.1f}", f"{p / o:.1f}×")
+        out.append(f"| {label} | {call} | {function} | {ours_ns} | {p:.1f} | {speedup} |")
+    out.append("")
+    out.append("Ours: the mechanisms of models/src/kinematics.rs; \"a + b\": one benchmark calling both. Not the")
+    out.append("same outputs everywhere: forwardKinematics(q, v, a) also gives every joint's acceleration for a,")
+    out.append("ours v and J̇v (the acceleration at q̈ = 0); computeJointJacobiansTimeVariation gives J and dJ/dt,")
+    out.append("ours J and J̇v; ccrba also gives h_g = A_g v, ours A_G alone. Frames: every BODY frame whose parent")
+    out.append("is a fixed joint in the URDF (frames.json); none for the quadruped. \"—\": not generated yet.")
 text = "\n".join(out)
 print(text)
 open(os.path.join(build, "comparison.md"), "w").write(text + "\n")

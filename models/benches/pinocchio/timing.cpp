@@ -1,6 +1,7 @@
 // Pinocchio's side of the project's benchmark comparison (run by compare.sh).
 //
-//   timing [--min-rep-ms MS] [--reps R] [--warmup-ms MS] MODEL.json ...
+//   timing [--min-rep-ms MS] [--reps R] [--warmup-ms MS] [--group all|dynamics|kinematics]
+//          [--frames FRAMES.json] MODEL.json ...
 //
 // Each file is in the layout of tests/data/pinocchio/*.json: a `model` section (joints in
 // tree order with their placement in the parent frame, bodies with mass, mass centre and
@@ -13,22 +14,45 @@
 //      and stops with an error if they disagree (then it would not be the same model);
 //   3. prints an FNV-1a fingerprint of the states' bits (q, v, a, tau per sample), which
 //      compare.sh matches against the Rust benchmark's, so both time the same numbers;
-//   4. times each algorithm: one call per state, the states taken in turn, in repetitions
-//      of N calls (N chosen so a repetition lasts at least --min-rep-ms), and prints the
-//      median over --reps repetitions, with the fastest and slowest.
-// crba and aba are timed in both of Pinocchio's conventions (LOCAL, the default, and
-// WORLD); compare.sh compares against the faster one.
+//   4. times each algorithm of the group (--group: dynamics, kinematics or all, the
+//      default): one call per state, the states taken in turn, in repetitions of N calls
+//      (N chosen so a repetition lasts at least --min-rep-ms), and prints the median over
+//      --reps repetitions, with the fastest and slowest.
+// Dynamics: rnea, crba and aba (both in Pinocchio's LOCAL convention, the default, and in
+// WORLD; compare.sh compares against the faster one), nonLinearEffects,
+// computeGeneralizedGravity, computeCoriolisMatrix.
+// Kinematics: forwardKinematics(q), forwardKinematics(q, v, a), computeJointJacobians,
+// computeJointJacobiansTimeVariation, centerOfMass(q), jacobianCenterOfMass(q),
+// ccrba(q, v), dccrba(q, v), and, for a model with operational frames, three frame
+// algorithms: forwardKinematics(q) + updateFramePlacements; computeJointJacobians +
+// getFrameJacobian(LOCAL_WORLD_ALIGNED) for each frame; forwardKinematics(q, v, 0) +
+// getFrameClassicalAcceleration(LOCAL_WORLD_ALIGNED) for each frame.
+//
+// Frames: --frames names a file (frames.json beside this program) that lists, per model
+// name, the URDF link each joint moves and the links hung on fixed joints. The frame
+// algorithms run on a copy of the model with the frames Pinocchio's URDF parser would make
+// from that (a JOINT and a BODY frame per joint, a FIXED_JOINT and a BODY frame per fixed
+// link); the frames they read are every BODY frame whose parent frame is a FIXED_JOINT
+// one. A model without an entry (the quadruped) has none: its frame algorithms are
+// skipped. The dynamics and the other kinematics run on the model without frames.
 //
 // Output, one record a line, tab-separated:
 //   model    <name> <nq> <nv>
 //   states   <name> <count> <fingerprint, 16 hex digits>
 //   check    <name> <worst relative error>
+//   frames   <name> <count> <comma-separated frame names>
 //   time     <name> <algorithm> <median ns> <min ns> <max ns> <calls per repetition>
 
 #include <pinocchio/algorithm/aba.hpp>
+#include <pinocchio/algorithm/center-of-mass.hpp>
+#include <pinocchio/algorithm/centroidal.hpp>
 #include <pinocchio/algorithm/crba.hpp>
 #include <pinocchio/algorithm/energy.hpp>
+#include <pinocchio/algorithm/frames.hpp>
+#include <pinocchio/algorithm/jacobian.hpp>
+#include <pinocchio/algorithm/kinematics.hpp>
 #include <pinocchio/algorithm/rnea.hpp>
+#include <pinocchio/math.hpp>
 #include <pinocchio/multibody.hpp>
 
 #include <boost/json/src.hpp>
@@ -41,6 +65,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -266,6 +291,8 @@ struct Settings {
   double min_rep_ms = 100.0;
   double warmup_ms = 200.0;
   int reps = 15;
+  bool dynamics = true;
+  bool kinematics = true;
 };
 
 // `call(k)` on state k; states taken in turn, one call per state.
@@ -324,8 +351,131 @@ void time_model(const std::string& name, const Model& model, const States& s, co
          time_calls([&](std::size_t k) { escape(&pinocchio::computeCoriolisMatrix(model, data, s.q[k], s.v[k])); }, n, settings));
 }
 
+// ---- kinematics ---------------------------------------------------------------------------
+
+// A copy of `model` with the frames Pinocchio's URDF parser would make, from the model's
+// entry in the frames file: a JOINT frame and a BODY frame (the link it moves) per joint, a
+// FIXED_JOINT frame and a BODY frame per link hung on a fixed joint, each placed as the
+// parser places it (the parent link's frame composed with the fixed joint's origin).
+Model with_frames(const Model& model, const json::object& entry) {
+  Model framed = model;
+  std::map<std::string, pinocchio::FrameIndex> link_frames;  // link name -> its BODY frame
+  const json::object& links = entry.at("links").as_object();
+  for (pinocchio::JointIndex j = 1; j < pinocchio::JointIndex(model.njoints); ++j) {
+    const json::value* link = links.if_contains(model.names[j]);
+    if (!link) throw std::runtime_error("frames: no link named for joint " + model.names[j]);
+    const auto joint_frame = framed.addJointFrame(j);
+    const std::string name(link->as_string());
+    link_frames[name] = framed.addBodyFrame(name, j, pinocchio::SE3::Identity(), int(joint_frame));
+  }
+  for (const json::value& x : entry.at("fixed").as_array()) {
+    const json::object& f = x.as_object();
+    const std::string name(f.at("link").as_string()), parent(f.at("parent").as_string());
+    const Eigen::Vector3d xyz = vector3(f.at("xyz")), rpy = vector3(f.at("rpy"));
+    const pinocchio::SE3 origin(pinocchio::rpy::rpyToMatrix(rpy[0], rpy[1], rpy[2]), xyz);
+    if (parent == "universe") {  // the URDF's root link
+      link_frames[name] = framed.addFrame(pinocchio::Frame(name, 0, 0, origin, pinocchio::BODY));
+      continue;
+    }
+    const auto found = link_frames.find(parent);
+    if (found == link_frames.end()) throw std::runtime_error("frames: " + name + "'s parent " + parent + " is not listed before it");
+    const pinocchio::Frame& up = framed.frames[found->second];
+    const pinocchio::SE3 placement = up.placement * origin;
+    const auto fixed = framed.addFrame(
+        pinocchio::Frame(std::string(f.at("joint").as_string()), up.parentJoint, found->second, placement, pinocchio::FIXED_JOINT));
+    link_frames[name] = framed.addFrame(pinocchio::Frame(name, up.parentJoint, fixed, placement, pinocchio::BODY));
+  }
+  return framed;
+}
+
+// The operational frames of a model: every BODY frame whose parent frame is a FIXED_JOINT.
+std::vector<pinocchio::FrameIndex> operational_frames(const Model& model) {
+  std::vector<pinocchio::FrameIndex> out;
+  for (pinocchio::FrameIndex i = 0; i < pinocchio::FrameIndex(model.nframes); ++i) {
+    const pinocchio::Frame& f = model.frames[i];
+    if (i != 0 && f.type == pinocchio::BODY && model.frames[f.parentFrame].type == pinocchio::FIXED_JOINT) out.push_back(i);
+  }
+  return out;
+}
+
+void time_kinematics(const std::string& name, const Model& model, const States& s, const json::object* frames,
+                     const Settings& settings) {
+  Data data(model);
+  const std::size_t n = s.size();
+  report(name, "forwardKinematics_q", time_calls([&](std::size_t k) {
+           pinocchio::forwardKinematics(model, data, s.q[k]);
+           escape(&data.oMi);
+         }, n, settings));
+  report(name, "forwardKinematics_qva", time_calls([&](std::size_t k) {
+           pinocchio::forwardKinematics(model, data, s.q[k], s.v[k], s.a[k]);
+           escape(&data.oMi);
+           escape(&data.v);
+           escape(&data.a);
+         }, n, settings));
+  report(name, "computeJointJacobians",
+         time_calls([&](std::size_t k) { escape(&pinocchio::computeJointJacobians(model, data, s.q[k])); }, n, settings));
+  report(name, "computeJointJacobiansTimeVariation", time_calls([&](std::size_t k) {
+           escape(&pinocchio::computeJointJacobiansTimeVariation(model, data, s.q[k], s.v[k]));
+           escape(&data.J);
+         }, n, settings));
+  report(name, "centerOfMass", time_calls([&](std::size_t k) { escape(&pinocchio::centerOfMass(model, data, s.q[k])); }, n, settings));
+  report(name, "jacobianCenterOfMass",
+         time_calls([&](std::size_t k) { escape(&pinocchio::jacobianCenterOfMass(model, data, s.q[k])); }, n, settings));
+  report(name, "ccrba", time_calls([&](std::size_t k) {
+           escape(&pinocchio::ccrba(model, data, s.q[k], s.v[k]));
+           escape(&data.hg);
+         }, n, settings));
+  report(name, "dccrba", time_calls([&](std::size_t k) {
+           escape(&pinocchio::dccrba(model, data, s.q[k], s.v[k]));
+           escape(&data.Ag);
+           escape(&data.hg);
+         }, n, settings));
+
+  // The frame algorithms, on the model with its URDF's frames.
+  const json::value* entry = frames ? frames->if_contains(name) : nullptr;
+  if (!entry) {
+    std::printf("frames\t%s\t0\t\n", name.c_str());
+    std::fflush(stdout);
+    return;
+  }
+  const Model framed = with_frames(model, entry->as_object());
+  const std::vector<pinocchio::FrameIndex> ids = operational_frames(framed);
+  std::string names;
+  for (const auto i : ids) names += (names.empty() ? "" : ",") + framed.frames[i].name;
+  std::printf("frames\t%s\t%zu\t%s\n", name.c_str(), ids.size(), names.c_str());
+  std::fflush(stdout);
+  if (ids.empty()) return;
+  Data fdata(framed);
+  // getFrameJacobian writes the columns of the frame's joint's support: the others stay
+  // zero, as set here once.
+  std::vector<MatrixXd> jacobians(ids.size(), MatrixXd::Zero(6, framed.nv));
+  std::vector<pinocchio::Motion> accelerations(ids.size(), pinocchio::Motion::Zero());
+  const VectorXd zero = VectorXd::Zero(framed.nv);
+  using pinocchio::LOCAL_WORLD_ALIGNED;
+  report(name, "framePlacements", time_calls([&](std::size_t k) {
+           pinocchio::forwardKinematics(framed, fdata, s.q[k]);
+           pinocchio::updateFramePlacements(framed, fdata);
+           escape(&fdata.oMf);
+         }, n, settings));
+  report(name, "frameJacobians", time_calls([&](std::size_t k) {
+           pinocchio::computeJointJacobians(framed, fdata, s.q[k]);
+           for (std::size_t f = 0; f < ids.size(); ++f)
+             pinocchio::getFrameJacobian(framed, fdata, ids[f], LOCAL_WORLD_ALIGNED, jacobians[f]);
+           escape(jacobians.data());
+         }, n, settings));
+  report(name, "frameClassicalAccelerations", time_calls([&](std::size_t k) {
+           pinocchio::forwardKinematics(framed, fdata, s.q[k], s.v[k], zero);
+           for (std::size_t f = 0; f < ids.size(); ++f)
+             accelerations[f] = pinocchio::getFrameClassicalAcceleration(framed, fdata, ids[f], LOCAL_WORLD_ALIGNED);
+           escape(accelerations.data());
+         }, n, settings));
+}
+
 [[noreturn]] void usage(const char* why) {
-  std::fprintf(stderr, "timing: %s\nusage: timing [--min-rep-ms MS] [--reps R] [--warmup-ms MS] MODEL.json ...\n", why);
+  std::fprintf(stderr,
+               "timing: %s\nusage: timing [--min-rep-ms MS] [--reps R] [--warmup-ms MS] [--group all|dynamics|kinematics]\n"
+               "              [--frames FRAMES.json] MODEL.json ...\n",
+               why);
   std::exit(2);
 }
 
@@ -334,6 +484,7 @@ void time_model(const std::string& name, const Model& model, const States& s, co
 int main(int argc, char** argv) {
   Settings settings;
   std::vector<std::string> files;
+  std::string frames_path;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&]() -> double {
@@ -343,11 +494,29 @@ int main(int argc, char** argv) {
     if (arg == "--min-rep-ms") settings.min_rep_ms = value();
     else if (arg == "--reps") settings.reps = int(value());
     else if (arg == "--warmup-ms") settings.warmup_ms = value();
+    else if (arg == "--group" || arg == "--frames") {
+      if (i + 1 >= argc) usage((arg + " needs a value").c_str());
+      const std::string given = argv[++i];
+      if (arg == "--frames") frames_path = given;
+      else if (given == "dynamics") settings.kinematics = false;
+      else if (given == "kinematics") settings.dynamics = false;
+      else if (given != "all") usage(("unknown group " + given).c_str());
+    }
     else if (arg.rfind("--", 0) == 0) usage(("unknown option " + arg).c_str());
     else files.push_back(arg);
   }
   if (files.empty()) usage("no model file");
   if (settings.reps < 5) usage("--reps must be at least 5");
+  json::value frames;
+  if (!frames_path.empty()) {
+    try {
+      frames = load(frames_path);
+      if (!frames.is_object()) throw std::runtime_error("not a JSON object");
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "timing: %s: %s\n", frames_path.c_str(), e.what());
+      return 1;
+    }
+  }
   std::printf("# Pinocchio %s, Eigen %d.%d.%d, EIGEN_MAX_ALIGN_BYTES %d; %d repetitions of >= %.0f ms, median\n",
               PINOCCHIO_VERSION, EIGEN_WORLD_VERSION, EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION, int(EIGEN_MAX_ALIGN_BYTES),
               settings.reps, settings.min_rep_ms);
@@ -370,7 +539,8 @@ int main(int argc, char** argv) {
                      path.c_str(), error);
         return 1;
       }
-      time_model(name, model, states, settings);
+      if (settings.dynamics) time_model(name, model, states, settings);
+      if (settings.kinematics) time_kinematics(name, model, states, frames.if_object(), settings);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "timing: %s: %s\n", path.c_str(), e.what());
       return 1;

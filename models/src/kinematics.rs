@@ -1,0 +1,164 @@
+//! The kinematics of the three robots of the Pinocchio comparison (UR5, Panda, the
+//! 18-degree-of-freedom quadruped), declared apart from their dynamics so that asking for
+//! the kinematics outputs leaves the code generated for [`crate::anchors::Ur5`],
+//! [`crate::anchors::Panda`] and [`crate::quadruped::Quadruped`] unchanged.
+//!
+//! Each mechanism is the same robot as its dynamics twin: the arms are imported from the
+//! URDF twins of `models/urdf/` (the numbers of [`crate::anchors`], and of
+//! [`crate::urdf_anchors`]), the quadruped is [`crate::quadruped::Quadruped`]'s declaration
+//! again without its foot loads (the kinematics take none). The tests below check that each
+//! builds the same runtime model as its twin. Gravity is declared as there, although no
+//! kinematics output reads it.
+//!
+//! `benches/dynamics.rs` times every output of these (`<Name>/<output>/generated`), and
+//! `benches/pinocchio/compare.sh` sets them beside Pinocchio's `forwardKinematics`,
+//! `computeJointJacobians`, `computeJointJacobiansTimeVariation`, `centerOfMass`,
+//! `jacobianCenterOfMass` and `ccrba`.
+//!
+//! EXTENSION POINT (frame outputs, not in the language yet). When `frame_placements`,
+//! `frame_jacobians`, `frame_acceleration_biases` and `centroidal_bias` exist:
+//! 1. add them to the `outputs` below, and to the arms the frames that Pinocchio's timing
+//!    program gets from `benches/pinocchio/frames.json` (the URDF's links hung on fixed
+//!    joints; their placements, in the frame of the moving body, are listed there), e.g.
+//!    `frame tool0: on wrist_3_link at [0.0, 0.0823, 0.0] rotation rpy(-PI/2, 0, 0);`;
+//!    the quadruped has no such frames (it gets `centroidal_bias` only);
+//! 2. add the outputs to `KINEMATICS` in `benches/dynamics.rs` (its extension point says
+//!    how); `compare.sh` already pairs them with Pinocchio's rows and prints "—" for ours
+//!    until the benchmarks exist.
+
+use dynamics_runtime::mechanism;
+
+mechanism! {
+    /// [`crate::anchors::Ur5`]'s kinematics, from `urdf/ur5.urdf`.
+    pub struct Ur5Kinematics;
+    urdf: "urdf/ur5.urdf";
+    gravity: [0.0, 0.0, -9.81];
+    outputs: [joint_placements, joint_jacobians, joint_velocities, joint_acceleration_biases,
+              center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix];
+}
+
+mechanism! {
+    /// [`crate::anchors::Panda`]'s kinematics, from `urdf/panda.urdf`.
+    pub struct PandaKinematics;
+    urdf: "urdf/panda.urdf";
+    gravity: [0.0, 0.0, -9.81];
+    outputs: [joint_placements, joint_jacobians, joint_velocities, joint_acceleration_biases,
+              center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix];
+}
+
+mechanism! {
+    /// [`crate::quadruped::Quadruped`]'s kinematics: its declaration again, without the
+    /// foot loads.
+    pub struct QuadrupedKinematics;
+    gravity: [0.0, 0.0, -9.81];
+    outputs: [joint_placements, joint_jacobians, joint_velocities, joint_acceleration_biases,
+              center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix];
+
+    /// The torso, its frame at the mass centre along its principal axes.
+    body torso { mass: 3.575, inertia: diag([0.017528444, 0.129944698, 0.143418825]) }
+    /// Floating base: position and orientation of the torso in the world.
+    joint base: free(ground -> torso);
+
+    body hip_fl { mass: 0.65, com: [0.05016, -0.013329, 0.0], inertia: diag([399.183e-6, 708.749e-6, 460.327e-6]) }
+    body thigh_fl {
+        mass: 0.863,
+        com: [0.0, 0.029693, -0.013531],
+        inertia: [[2082.653e-6, 0.0, 0.0], [0.0, 2271.664e-6, -0.000261229], [0.0, -0.000261229, 617.145e-6]],
+    }
+    body shin_fl { mass: 0.119, com: [0.0, 0.0, -0.093811], inertia: diag([827.276e-6, 834.282e-6, 15.950e-6]) }
+    joint abduction_fl: revolute(torso -> hip_fl) { axis: x, at: [0.23, 0.0805, 0.0] }
+    joint hip_fl: revolute(hip_fl -> thigh_fl) { axis: y, at: [0.053, 0.0575, 0.0] }
+    joint knee_fl: revolute(thigh_fl -> shin_fl) { axis: y, at: [0.0, 0.0, -0.2] }
+
+    body hip_fr { mass: 0.65, com: [0.05016, 0.013329, 0.0], inertia: diag([399.183e-6, 708.749e-6, 460.327e-6]) }
+    body thigh_fr {
+        mass: 0.863,
+        com: [0.0, -0.029693, -0.013531],
+        inertia: [[2082.653e-6, 0.0, 0.0], [0.0, 2271.664e-6, 0.000261229], [0.0, 0.000261229, 617.145e-6]],
+    }
+    body shin_fr { mass: 0.119, com: [0.0, 0.0, -0.093811], inertia: diag([827.276e-6, 834.282e-6, 15.950e-6]) }
+    joint abduction_fr: revolute(torso -> hip_fr) { axis: x, at: [0.23, -0.0805, 0.0] }
+    joint hip_fr: revolute(hip_fr -> thigh_fr) { axis: y, at: [0.053, -0.0575, 0.0] }
+    joint knee_fr: revolute(thigh_fr -> shin_fr) { axis: y, at: [0.0, 0.0, -0.2] }
+
+    body hip_hl { mass: 0.65, com: [-0.05016, -0.013329, 0.0], inertia: diag([399.183e-6, 708.749e-6, 460.327e-6]) }
+    body thigh_hl {
+        mass: 0.863,
+        com: [0.0, 0.029693, -0.013531],
+        inertia: [[2082.653e-6, 0.0, 0.0], [0.0, 2271.664e-6, -0.000261229], [0.0, -0.000261229, 617.145e-6]],
+    }
+    body shin_hl { mass: 0.119, com: [0.0, 0.0, -0.093811], inertia: diag([827.276e-6, 834.282e-6, 15.950e-6]) }
+    joint abduction_hl: revolute(torso -> hip_hl) { axis: x, at: [-0.23, 0.0805, 0.0] }
+    joint hip_hl: revolute(hip_hl -> thigh_hl) { axis: y, at: [-0.053, 0.0575, 0.0] }
+    joint knee_hl: revolute(thigh_hl -> shin_hl) { axis: y, at: [0.0, 0.0, -0.2] }
+
+    body hip_hr { mass: 0.65, com: [-0.05016, 0.013329, 0.0], inertia: diag([399.183e-6, 708.749e-6, 460.327e-6]) }
+    body thigh_hr {
+        mass: 0.863,
+        com: [0.0, -0.029693, -0.013531],
+        inertia: [[2082.653e-6, 0.0, 0.0], [0.0, 2271.664e-6, 0.000261229], [0.0, 0.000261229, 617.145e-6]],
+    }
+    body shin_hr { mass: 0.119, com: [0.0, 0.0, -0.093811], inertia: diag([827.276e-6, 834.282e-6, 15.950e-6]) }
+    joint abduction_hr: revolute(torso -> hip_hr) { axis: x, at: [-0.23, -0.0805, 0.0] }
+    joint hip_hr: revolute(hip_hr -> thigh_hr) { axis: y, at: [-0.053, -0.0575, 0.0] }
+    joint knee_hr: revolute(thigh_hr -> shin_hr) { axis: y, at: [0.0, 0.0, -0.2] }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{PandaKinematics, QuadrupedKinematics, Ur5Kinematics};
+    use crate::anchors::{Panda, Ur5};
+    use crate::quadruped::Quadruped;
+    use dynamics_runtime::{Mechanism, Model};
+
+    /// The two models have the same tree, joints, placements and inertias, to `tolerance`
+    /// (the URDF twins write rotations as rpy angles, the declarations as matrices).
+    fn assert_same_robot(a: &Model, b: &Model, tolerance: f64) {
+        let close = |x: f64, y: f64, what: &str| {
+            assert!((x - y).abs() <= tolerance, "{what}: {x} against {y}");
+        };
+        assert_eq!(a.nq(), b.nq());
+        assert_eq!(a.nv(), b.nv());
+        assert_eq!(a.bodies().len(), b.bodies().len());
+        for (x, y) in a.gravity_in_world().iter().zip(b.gravity_in_world().iter()) {
+            close(*x, *y, "gravity");
+        }
+        for (p, q) in a.bodies().iter().zip(b.bodies()) {
+            let name = &p.name;
+            assert_eq!(p.name, q.name);
+            assert_eq!(p.parent, q.parent, "{name}");
+            assert_eq!(p.joint.name, q.joint.name, "{name}");
+            assert_eq!(p.joint.kind, q.joint.kind, "{name}");
+            assert_eq!(
+                (p.joint.idx_q, p.joint.idx_v),
+                (q.joint.idx_q, q.joint.idx_v)
+            );
+            let (s, t) = (&p.joint.placement_in_parent, &q.joint.placement_in_parent);
+            for (x, y) in s.translation.iter().zip(t.translation.iter()) {
+                close(*x, *y, &format!("{name} joint translation"));
+            }
+            for (x, y) in s.rotation.iter().zip(t.rotation.iter()) {
+                close(*x, *y, &format!("{name} joint rotation"));
+            }
+            let (s, t) = (&p.inertia, &q.inertia);
+            close(s.mass, t.mass, &format!("{name} mass"));
+            for (x, y) in s.com_in_body.iter().zip(t.com_in_body.iter()) {
+                close(*x, *y, &format!("{name} mass centre"));
+            }
+            for (x, y) in s
+                .inertia_com_in_body
+                .iter()
+                .zip(t.inertia_com_in_body.iter())
+            {
+                close(*x, *y, &format!("{name} inertia"));
+            }
+        }
+    }
+
+    #[test]
+    fn the_kinematics_mechanisms_are_the_dynamics_robots() {
+        assert_same_robot(&Ur5Kinematics::model(), &Ur5::model(), 1e-12);
+        assert_same_robot(&PandaKinematics::model(), &Panda::model(), 1e-12);
+        assert_same_robot(&QuadrupedKinematics::model(), &Quadruped::model(), 0.0);
+    }
+}
