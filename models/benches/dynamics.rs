@@ -702,15 +702,9 @@ fn check_kinematics<const NQ: usize, const NV: usize, const NB: usize>(
     }
 }
 
-/// The kinematics outputs timed, each alone: `<Name>/<output>/generated`.
-///
-/// EXTENSION POINT: when the frame outputs exist, add `frame_placements` (q),
-/// `frame_jacobians` (q), `frame_acceleration_biases` (q, v) and `centroidal_bias` (q, v)
-/// to this list, to `kinematics_call!` below and to the `outputs` of `models::kinematics`
-/// (with the frames of `benches/pinocchio/frames.json`). `compare.sh` already looks for
-/// `<Name>Kinematics/frame_placements/generated` and the others, and prints "—" until they
-/// exist.
-const KINEMATICS: [&str; 7] = [
+/// The kinematics outputs timed, each alone: `<Name>/<output>/generated` (`compare.sh`
+/// pairs each with its Pinocchio call).
+const KINEMATICS: [&str; 11] = [
     "joint_placements",
     "joint_velocities",
     "joint_acceleration_biases",
@@ -718,6 +712,10 @@ const KINEMATICS: [&str; 7] = [
     "center_of_mass",
     "center_of_mass_jacobian",
     "centroidal_momentum_matrix",
+    "frame_placements",
+    "frame_jacobians",
+    "frame_acceleration_biases",
+    "centroidal_bias",
 ];
 
 /// The generated call of one kinematics output.
@@ -742,6 +740,18 @@ macro_rules! kinematics_call {
     };
     ($m:ty, centroidal_momentum_matrix, $s:ident) => {
         <$m>::centroidal_momentum_matrix(&$s.q)
+    };
+    ($m:ty, frame_placements, $s:ident) => {
+        <$m>::frame_placements(&$s.q)
+    };
+    ($m:ty, frame_jacobians, $s:ident) => {
+        <$m>::frame_jacobians(&$s.q)
+    };
+    ($m:ty, frame_acceleration_biases, $s:ident) => {
+        <$m>::frame_acceleration_biases(&$s.q, &$s.v)
+    };
+    ($m:ty, centroidal_bias, $s:ident) => {
+        <$m>::centroidal_bias(&$s.q, &$s.v)
     };
 }
 
@@ -773,6 +783,7 @@ macro_rules! bench_kinematics {
             bench_kinematics!(@each group, $m, states, [
                 joint_placements, joint_velocities, joint_acceleration_biases, joint_jacobians,
                 center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix,
+                frame_placements, frame_jacobians, frame_acceleration_biases, centroidal_bias,
             ]);
             group.bench_function("joint_velocities+joint_acceleration_biases/generated", |b| {
                 b.iter_custom(|iters| {

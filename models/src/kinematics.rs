@@ -15,16 +15,9 @@
 //! `computeJointJacobians`, `computeJointJacobiansTimeVariation`, `centerOfMass`,
 //! `jacobianCenterOfMass` and `ccrba`.
 //!
-//! EXTENSION POINT (frame outputs, not in the language yet). When `frame_placements`,
-//! `frame_jacobians`, `frame_acceleration_biases` and `centroidal_bias` exist:
-//! 1. add them to the `outputs` below, and to the arms the frames that Pinocchio's timing
-//!    program gets from `benches/pinocchio/frames.json` (the URDF's links hung on fixed
-//!    joints; their placements, in the frame of the moving body, are listed there), e.g.
-//!    `frame tool0: on wrist_3_link at [0.0, 0.0823, 0.0] rotation rpy(-PI/2, 0, 0);`;
-//!    the quadruped has no such frames (it gets `centroidal_bias` only);
-//! 2. add the outputs to `KINEMATICS` in `benches/dynamics.rs` (its extension point says
-//!    how); `compare.sh` already pairs them with Pinocchio's rows and prints "—" for ours
-//!    until the benchmarks exist.
+//! The frames are those Pinocchio's timing program gets from `benches/pinocchio/frames.json`:
+//! the URDF links hung on fixed joints (the UR5's `ee_link` and `tool0` and its root links,
+//! the Panda's flange, hand and fingers), and the quadruped's four feet.
 
 use dynamics_runtime::mechanism;
 
@@ -34,7 +27,12 @@ mechanism! {
     urdf: "urdf/ur5.urdf";
     gravity: [0.0, 0.0, -9.81];
     outputs: [joint_placements, joint_jacobians, joint_velocities, joint_acceleration_biases,
-              center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix];
+              center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix,
+              frame_placements, frame_jacobians, frame_acceleration_biases, centroidal_bias];
+    frame world: on ground;
+    frame base_link: on ground;
+    frame ee_link: on wrist_3_link at [0.0, 0.0823, 0.0] rotation rpy(0.0, 0.0, pi / 2.0);
+    frame tool0: on wrist_3_link at [0.0, 0.0823, 0.0] rotation rpy(-pi / 2.0, 0.0, 0.0);
 }
 
 mechanism! {
@@ -43,7 +41,12 @@ mechanism! {
     urdf: "urdf/panda.urdf";
     gravity: [0.0, 0.0, -9.81];
     outputs: [joint_placements, joint_jacobians, joint_velocities, joint_acceleration_biases,
-              center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix];
+              center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix,
+              frame_placements, frame_jacobians, frame_acceleration_biases, centroidal_bias];
+    frame panda_link8: on panda_link7 at [0.0, 0.0, 0.107];
+    frame panda_hand: on panda_link7 at [0.0, 0.0, 0.107] rotation rpy(0.0, 0.0, -pi / 4.0);
+    frame panda_leftfinger: on panda_link7 at [0.0, 0.0, 0.1654] rotation rpy(0.0, 0.0, -pi / 4.0);
+    frame panda_rightfinger: on panda_link7 at [0.0, 0.0, 0.1654] rotation rpy(0.0, 0.0, -pi / 4.0);
 }
 
 mechanism! {
@@ -52,7 +55,8 @@ mechanism! {
     pub struct QuadrupedKinematics;
     gravity: [0.0, 0.0, -9.81];
     outputs: [joint_placements, joint_jacobians, joint_velocities, joint_acceleration_biases,
-              center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix];
+              center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix,
+              frame_placements, frame_jacobians, frame_acceleration_biases, centroidal_bias];
 
     /// The torso, its frame at the mass centre along its principal axes.
     body torso { mass: 3.575, inertia: diag([0.017528444, 0.129944698, 0.143418825]) }
@@ -102,6 +106,12 @@ mechanism! {
     joint abduction_hr: revolute(torso -> hip_hr) { axis: x, at: [-0.23, -0.0805, 0.0] }
     joint hip_hr: revolute(hip_hr -> thigh_hr) { axis: y, at: [-0.053, -0.0575, 0.0] }
     joint knee_hr: revolute(thigh_hr -> shin_hr) { axis: y, at: [0.0, 0.0, -0.2] }
+
+    /// The feet, where the foot loads of the dynamics twin act.
+    frame foot_fl: on shin_fl at [0.0, 0.0, -0.2];
+    frame foot_fr: on shin_fr at [0.0, 0.0, -0.2];
+    frame foot_hl: on shin_hl at [0.0, 0.0, -0.2];
+    frame foot_hr: on shin_hr at [0.0, 0.0, -0.2];
 }
 
 #[cfg(test)]

@@ -31,13 +31,12 @@
 # joint_jacobians; computeJointJacobiansTimeVariation ~ joint_jacobians +
 # joint_acceleration_biases (J and J̇v; Pinocchio computes J and J̇); centerOfMass ~
 # center_of_mass; jacobianCenterOfMass ~ center_of_mass_jacobian; ccrba ~
-# centroidal_momentum_matrix. Rows with Pinocchio only, ours "—" until the functions exist:
-# forwardKinematics + updateFramePlacements ~ frame_placements; computeJointJacobians +
-# getFrameJacobian per frame ~ frame_jacobians; forwardKinematics(q, v, 0) +
-# getFrameClassicalAcceleration per frame ~ frame_acceleration_biases; dccrba ~
-# centroidal_bias. The frames are those of the arms' URDFs listed in frames.json (every
-# BODY frame whose parent is a fixed joint); the quadruped has none, its frame rows are
-# skipped. Timings of a busy machine are noisy: the load average is printed with each
+# centroidal_momentum_matrix; forwardKinematics + updateFramePlacements ~ frame_placements;
+# computeJointJacobians + getFrameJacobian per frame ~ frame_jacobians;
+# forwardKinematics(q, v, 0) + getFrameClassicalAcceleration per frame ~
+# frame_acceleration_biases; dccrba ~ centroidal_bias. The frames are those listed in
+# frames.json: the arms' URDF links on fixed joints (every BODY frame whose parent is a
+# fixed joint), the quadruped's four feet. Timings of a busy machine are noisy: the load average is printed with each
 # table. --quick shortens both sides' measurements (for trying the script, not for
 # figures). --native builds the generated code for this CPU too (RUSTFLAGS
 # "-C target-cpu=native", in target/native), as Pinocchio is always built (-march=native);
@@ -85,8 +84,7 @@ for m in $MODELS; do
   KINEMATICS+=("$k")
 done
 # The generated kinematics benchmarks (benches/dynamics.rs), as a regex alternation: each
-# function alone, the pairs timed as one call each, and the frame outputs that do not exist
-# yet (criterion matches none of those; compare.sh prints "—" for them).
+# function alone, and the pairs timed as one call each.
 KIN_OUTPUTS='joint_placements|joint_velocities|joint_acceleration_biases|joint_jacobians'
 KIN_OUTPUTS+='|joint_velocities\+joint_acceleration_biases|joint_jacobians\+joint_acceleration_biases'
 KIN_OUTPUTS+='|center_of_mass|center_of_mass_jacobian|centroidal_momentum_matrix'
@@ -244,11 +242,8 @@ TARGETS = {"rnea": {"ur5": 8, "panda": 8, "quadruped": 5}, "crba": 5, "aba": 6,
 ROBOTS = {"ur5", "panda", "quadruped"}
 # Kinematics: the Pinocchio call as printed (N: the number of frames), its record in
 # timing's output, our generated benchmark (two functions joined by "+": one benchmark
-# calling both), and whether it must exist on our side (False: the frame outputs and
-# centroidal_bias, not generated yet, "—" until they are; a frame row without frames on
-# Pinocchio's side, the quadruped's, is left out).
-# EXTENSION POINT: nothing to change here when the frame outputs arrive; their benchmarks
-# (`<Name>Kinematics/frame_placements/generated`, ...) fill the "—".
+# calling both), whether it must exist on our side, and whether it is a frame row (left out
+# for a model without frames on Pinocchio's side).
 KIN_ROWS = [("forwardKinematics(q)", "forwardKinematics_q", "joint_placements", True, False),
             ("forwardKinematics(q, v, a)", "forwardKinematics_qva",
              "joint_velocities+joint_acceleration_biases", True, False),
@@ -259,12 +254,12 @@ KIN_ROWS = [("forwardKinematics(q)", "forwardKinematics_q", "joint_placements", 
             ("jacobianCenterOfMass", "jacobianCenterOfMass", "center_of_mass_jacobian", True, False),
             ("ccrba", "ccrba", "centroidal_momentum_matrix", True, False),
             ("forwardKinematics + updateFramePlacements", "framePlacements", "frame_placements",
-             False, True),
+             True, True),
             ("computeJointJacobians + getFrameJacobian × N", "frameJacobians", "frame_jacobians",
-             False, True),
+             True, True),
             ("forwardKinematics(q, v, 0) + getFrameClassicalAcceleration × N",
-             "frameClassicalAccelerations", "frame_acceleration_biases", False, True),
-            ("dccrba", "dccrba", "centroidal_bias", False, False)]
+             "frameClassicalAccelerations", "frame_acceleration_biases", True, True),
+            ("dccrba", "dccrba", "centroidal_bias", True, False)]
 
 pin, pin_states, frames, header = {}, {}, {}, ""
 for line in open(os.path.join(build, "pinocchio.tsv")):
@@ -383,7 +378,7 @@ if kin_rows:
     out.append("same outputs everywhere: forwardKinematics(q, v, a) also gives every joint's acceleration for a,")
     out.append("ours v and J̇v (the acceleration at q̈ = 0); computeJointJacobiansTimeVariation gives J and dJ/dt,")
     out.append("ours J and J̇v; ccrba also gives h_g = A_g v, ours A_G alone. Frames: every BODY frame whose parent")
-    out.append("is a fixed joint in the URDF (frames.json); none for the quadruped. \"—\": not generated yet.")
+    out.append("is a fixed joint in the URDF, and the quadruped's feet (frames.json).")
 text = "\n".join(out)
 print(text)
 open(os.path.join(build, "comparison.md"), "w").write(text + "\n")
