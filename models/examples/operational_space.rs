@@ -27,7 +27,7 @@
 
 use dynamics_runtime::integrators::{self, Inputs, State};
 use dynamics_runtime::{mechanism, Mechanism};
-use nalgebra::{Matrix3, Matrix6, Rotation3, Vector3, Vector6};
+use nalgebra::{Matrix3, Matrix6, Rotation3, UnitQuaternion, Vector3, Vector6};
 use std::f64::consts::PI;
 use std::hint::black_box;
 use std::time::Instant;
@@ -91,8 +91,10 @@ fn torque(q: &[f64; 6], v: &[f64; 6], target: &Target, t: f64, feedforward_bias:
 
     let (p_d, v_d, a_d) = target.at(t);
     let e_p = p_d - Vector3::from(origin);
+    // The log map through a quaternion: Rotation3's own (acos of the trace) is NaN when
+    // rounding puts the trace of a near-identity rotation above 3.
     let r = Rotation3::from_matrix_unchecked(matrix3(&rotation));
-    let e_o = (target.rotation * r.inverse()).scaled_axis();
+    let e_o = UnitQuaternion::from_rotation_matrix(&(target.rotation * r.inverse())).scaled_axis();
     let ed_p = v_d - twist.fixed_rows::<3>(0);
     let ed_o = -twist.fixed_rows::<3>(3);
 

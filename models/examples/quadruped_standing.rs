@@ -212,8 +212,15 @@ fn contact_inverse_dynamics(
     (tau, lambda)
 }
 
+/// The torso's orientation (q's quaternion is x, y, z, w). Orientation errors are taken
+/// between unit quaternions: `Rotation3`'s log map (the acos of the trace) is NaN when
+/// rounding puts a near-identity rotation's trace above 3.
+fn torso_orientation(q: &[f64; 19]) -> UnitQuaternion<f64> {
+    UnitQuaternion::from_quaternion(Quaternion::new(q[6], q[3], q[4], q[5]))
+}
+
 fn torso_rotation(q: &[f64; 19]) -> Rotation3<f64> {
-    UnitQuaternion::from_quaternion(Quaternion::new(q[6], q[3], q[4], q[5])).to_rotation_matrix()
+    torso_orientation(q).to_rotation_matrix()
 }
 
 /// The commanded torso pose and its rates: position, velocity, acceleration (world), roll
@@ -260,11 +267,11 @@ fn trot(q0: &[f64; 19], stabilised: bool) -> Run {
         let w_body = Vector3::new(v[3], v[4], v[5]);
         let ([p_d, v_d, a_d], [roll, roll_rate, roll_acc]) = commanded(&rest, t);
         let p = Vector3::new(q[0], q[1], q[2]);
-        let r_d = Rotation3::from_axis_angle(&Vector3::x_axis(), roll);
+        let r_d = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), roll);
         let linear = a_d + KD * (v_d - r * v_body) + KP * (p_d - p);
         let angular = roll_acc * Vector3::x()
             + KD * (roll_rate * Vector3::x() - r * w_body)
-            + KP * (r_d * r.inverse()).scaled_axis();
+            + KP * (r_d * torso_orientation(&q).inverse()).scaled_axis();
         let mut base = Vector6::zeros();
         base.fixed_rows_mut::<3>(0)
             .copy_from(&(r.inverse() * linear - w_body.cross(&v_body)));
@@ -291,8 +298,8 @@ fn trot(q0: &[f64; 19], stabilised: bool) -> Run {
             let error = (p_d - Vector3::new(q[0], q[1], q[2])).norm();
             sum_sq += error * error;
             run.position_max = run.position_max.max(error);
-            let r_d = Rotation3::from_axis_angle(&Vector3::x_axis(), roll);
-            let angle = (r_d * torso_rotation(&q).inverse()).angle();
+            let r_d = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), roll);
+            let angle = r_d.angle_to(&torso_orientation(&q));
             run.roll_max = run.roll_max.max(angle);
         }
     }
