@@ -642,16 +642,18 @@ fn joint_jacobians(model: &Model) -> Expanded {
 fn joint_velocities(model: &Model) -> Expanded {
     let (g, t, _) = fresh_graph(model);
     let v = inputs(&g, Array::V, model.nv);
-    let velocities = kinematics::body_jacobians(&g, model, &t)
+    let velocities = kinematics::body_velocities(&g, model, &t, &v)
         .into_iter()
-        .map(|rows| Output::Vector(times(&g, &rows, &v)))
+        .map(|(linear, angular)| {
+            Output::Vector(linear.0.iter().chain(&angular.0).copied().collect())
+        })
         .collect();
     Expanded {
         graph: g,
         output: Output::Stack(velocities),
         doc: "The velocity of every body's frame (indexed like `BODY_NAMES`), [v_P; ω] at its \
-              origin in world axes: J q̇ with J of `joint_jacobians` (Pinocchio's joint \
-              velocity in `LOCAL_WORLD_ALIGNED`)."
+              origin in world axes: J q̇ with J of `joint_jacobians`, by the velocity field \
+              from the root (Pinocchio's joint velocity in `LOCAL_WORLD_ALIGNED`)."
             .to_owned(),
     }
 }
@@ -763,9 +765,11 @@ fn frame_jacobians(model: &Model, axes: JacobianAxes) -> Expanded {
 fn frame_velocities(model: &Model) -> Expanded {
     let (g, t, _) = fresh_graph(model);
     let v = inputs(&g, Array::V, model.nv);
-    let velocities = frames::frame_jacobians(&g, model, &t, JacobianAxes::WorldAligned)
+    let velocities = frames::frame_velocities(&g, model, &t, &v)
         .into_iter()
-        .map(|rows| Output::Vector(times(&g, &rows, &v)))
+        .map(|(linear, angular)| {
+            Output::Vector(linear.0.iter().chain(&angular.0).copied().collect())
+        })
         .collect();
     Expanded {
         graph: g,
@@ -796,16 +800,6 @@ fn frame_acceleration_biases(model: &Model) -> Expanded {
               `LOCAL_WORLD_ALIGNED` at a = 0)."
             .to_owned(),
     }
-}
-
-/// The products rows · x, one per row.
-fn times(g: &Graph, rows: &[Vec<Node>], x: &[Node]) -> Vec<Node> {
-    rows.iter()
-        .map(|row| {
-            let terms: Vec<Node> = row.iter().zip(x).map(|(&j, &x)| g.mul(j, x)).collect();
-            g.sum(&terms)
-        })
-        .collect()
 }
 
 /// The model's force-analysis data; [`CATALOG`] asks for the functions that read it only

@@ -12,7 +12,8 @@
 //! Jacobian of the point p moving with b ([`kinematics::point_jacobian_columns`]): column j
 //! is [a × (p − p_j); a] for a revolute joint j on the path to the root, [a; 0] for a
 //! prismatic one, and zero (not computed) for any other joint. In the frame's own axes
-//! (`LOCAL`) both blocks are turned by Rᵀ. The velocity is J q̇, and the classical
+//! (`LOCAL`) both blocks are turned by Rᵀ. The velocity is J q̇ = [v_P + ω × ρ; ω] from its
+//! body's ([`kinematics::body_velocities`]), and the classical
 //! acceleration of the frame's origin at q̈ = 0 follows from its body's (the rigid-body
 //! acceleration field, with ρ = R_b r_f the lever in world axes):
 //!
@@ -95,6 +96,32 @@ pub fn frame_jacobians(
                 }
             }
             kinematics::jacobian_rows(g, &columns)
+        })
+        .collect()
+}
+
+/// Every frame's velocity [v; ω] in world axes at its origin: its body's, carried by the
+/// velocity field, v = v_P + ω × ρ (= J q̇ with J of [`frame_jacobians`]).
+pub fn frame_velocities(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    velocity: &[Node],
+) -> Vec<(Vec3, Vec3)> {
+    let velocities = kinematics::body_velocities(g, model, transforms, velocity);
+    let poses = kinematics::body_poses(g, model, transforms);
+    model
+        .frames
+        .iter()
+        .map(|frame| match frame.body {
+            None => (Vec3::zero(g), Vec3::zero(g)),
+            Some(b) => {
+                let (linear, angular) = velocities[b];
+                let lever = poses[b]
+                    .rotation_in_world
+                    .mul_vec(g, vector(g, &frame.origin_in_body));
+                (linear.add(g, angular.cross(g, lever)), angular)
+            }
         })
         .collect()
 }

@@ -341,6 +341,55 @@ pub fn centroidal_momentum_matrix(
         .collect()
 }
 
+/// Every body's velocity [v_P; ω] in world axes at its origin, by the rigid-body velocity
+/// field from the root: ω_i = ω_λ + a q̇ (revolute about a = R_i s), v_i = v_λ + ω_λ × (p_i −
+/// p_λ) (+ a q̇ for a prismatic joint); a free base's v = [v_P; ω] is in its own frame,
+/// turned by R. (The same as J q̇ with the Jacobians of [`body_jacobians`], in O(n).)
+pub fn body_velocities(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    velocity: &[Node],
+) -> Vec<(Vec3, Vec3)> {
+    let poses = body_poses(g, model, transforms);
+    let mut out: Vec<(Vec3, Vec3)> = Vec::with_capacity(model.bodies.len());
+    for (i, body) in model.bodies.iter().enumerate() {
+        let pose = &poses[i];
+        let (mut linear, mut angular) = match body.parent {
+            None => (Vec3::zero(g), Vec3::zero(g)),
+            Some(p) => {
+                let (v_parent, omega_parent) = out[p];
+                let lever = pose.origin_in_world.sub(g, poses[p].origin_in_world);
+                (v_parent.add(g, omega_parent.cross(g, lever)), omega_parent)
+            }
+        };
+        let k = body.joint.idx_v;
+        match body.joint.kind {
+            JointKind::Revolute { axis_in_joint } => {
+                let axis = axis_in_world(g, pose, axis_in_joint);
+                angular = angular.add(g, axis.scale(g, velocity[k]));
+            }
+            JointKind::Prismatic { axis_in_joint } => {
+                let axis = axis_in_world(g, pose, axis_in_joint);
+                linear = linear.add(g, axis.scale(g, velocity[k]));
+            }
+            JointKind::Free => {
+                let own = |offset: usize| {
+                    Vec3::new(
+                        velocity[k + offset],
+                        velocity[k + offset + 1],
+                        velocity[k + offset + 2],
+                    )
+                };
+                linear = linear.add(g, pose.rotation_in_world.mul_vec(g, own(0)));
+                angular = angular.add(g, pose.rotation_in_world.mul_vec(g, own(3)));
+            }
+        }
+        out.push((linear, angular));
+    }
+    out
+}
+
 /// A body's motion in world axes: the classical acceleration a_P of its origin, α and ω.
 #[derive(Clone, Copy, Debug)]
 pub struct MotionInWorld {
