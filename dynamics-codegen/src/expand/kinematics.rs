@@ -37,21 +37,22 @@
 //! and zero for any other joint (it does not move body i).
 //!
 //! The centroidal momentum matrix A_G (6 × nv, rows [linear; angular], h_G = A_G q̇: the
-//! linear momentum and the angular momentum about the centre of mass c, world axes). A
-//! subtree moved by joint j at unit rate has, with M_j, S_j as above and I_j its rotational
-//! inertia about the world origin (Σ R I_P Rᵀ − (p̂ ĥ + ĥ p̂) − m p̂², h = R h_P),
+//! linear momentum and the angular momentum about the centre of mass c, world axes). The
+//! subtree that joint j carries, with its composite inertia (m, h, I_P) about P_j in body
+//! j's frame ([`crba::composite_inertias`]), moving along the joint's motion subspace s at
+//! unit rate, has the momentum [F; M_P] = I^c_j s in that frame (F = m v + ω × h,
+//! M_P = h × v + I_P ω); A_G's column is that momentum in the world about c:
 //!
 //! ```text
-//! revolute (ω = a about p_j):  l = a × (S_j − M_j p_j),   k_O = I_j a − S_j × (a × p_j)
-//! prismatic (v = a):            l = M_j a,                  k_O = S_j × a
+//! l = R_j F,    k_c = R_j M_P + (p_j − c) × l
 //! ```
 //!
-//! (a free base: its linear columns as prismatic along R e_k, its angular ones as revolute
-//! about R e_k), and the column is [l; k_O − c × l].
+//! (for a revolute joint s picks a column of the composite inertia: no products).
 
+use super::crba;
 use super::geometry::{BodyInertia, JointTransform};
 use super::rnea::{self, SweepInputs};
-use super::spatial::{congruence, symmetric};
+use super::spatial::{inertia_times, motion_subspace};
 use crate::model::{JointKind, Model};
 use crate::sym::{Graph, Mat3, Node, Vec3};
 
@@ -278,57 +279,22 @@ pub fn centroidal_momentum_matrix(
     inertias: &[BodyInertia],
 ) -> Vec<Vec<Node>> {
     let poses = body_poses(g, model, transforms);
-    let n = model.bodies.len();
-    let (mass, moment) = subtree_masses_and_moments(g, model, &poses, inertias);
-    // Each body's rotational inertia about the world origin, world axes.
-    let mut rotational: Vec<Mat3> = (0..n)
-        .map(|i| {
-            let (pose, inertia) = (&poses[i], &inertias[i]);
-            let rotated = congruence(g, pose.rotation_in_world, inertia.inertia_about_origin);
-            let h = pose.rotation_in_world.mul_vec(g, inertia.first_moment);
-            let (p_hat, h_hat) = (pose.origin_in_world.cross_matrix(g), h.cross_matrix(g));
-            let ph = p_hat.mul(g, h_hat);
-            let cross_terms = symmetric(|r, c| g.add(ph.get(r, c), ph.get(c, r)));
-            let pp = symmetric(|r, c| p_hat.row(r).dot(g, p_hat.col(c)));
-            rotated
-                .sub(g, cross_terms)
-                .sub(g, pp.scale(g, inertia.mass))
-        })
-        .collect();
-    add_to_parents(model, &mut rotational, |a, b| a.add(g, b));
+    let composite = crba::composite_inertias(g, model, transforms, inertias);
     let centre = center_of_mass(g, model, transforms, inertias);
     let mut columns: Vec<(Vec3, Vec3)> = vec![(Vec3::zero(g), Vec3::zero(g)); model.nv];
     for (j, body) in model.bodies.iter().enumerate() {
         let pose = &poses[j];
-        // The subtree turning at unit rate about `axis` through P_j, or sliding along it.
-        let turning = |axis: Vec3| {
-            let linear = axis.cross(g, moment[j].sub(g, pose.origin_in_world.scale(g, mass[j])));
-            let about_origin = rotational[j]
-                .mul_vec(g, axis)
-                .sub(g, moment[j].cross(g, axis.cross(g, pose.origin_in_world)));
-            (linear, about_origin)
-        };
-        let sliding = |axis: Vec3| (axis.scale(g, mass[j]), moment[j].cross(g, axis));
-        let about_centre = |(linear, about_origin): (Vec3, Vec3)| {
-            (linear, about_origin.sub(g, centre.cross(g, linear)))
-        };
-        let k = body.joint.idx_v;
-        match body.joint.kind {
-            JointKind::Revolute { axis_in_joint } => {
-                let axis = axis_in_world(g, pose, axis_in_joint);
-                columns[k] = about_centre(turning(axis));
-            }
-            JointKind::Prismatic { axis_in_joint } => {
-                let axis = axis_in_world(g, pose, axis_in_joint);
-                columns[k] = about_centre(sliding(axis));
-            }
-            JointKind::Free => {
-                for e in 0..3 {
-                    let axis = pose.rotation_in_world.col(e);
-                    columns[k + e] = about_centre(sliding(axis));
-                    columns[k + 3 + e] = about_centre(turning(axis));
-                }
-            }
+        let lever = pose.origin_in_world.sub(g, centre);
+        for (k, s) in motion_subspace(g, &body.joint.kind).into_iter().enumerate() {
+            // The subtree's momentum [F; M_P] in body j's frame at P_j, turned into the world
+            // and taken about c.
+            let (force, moment) = inertia_times(g, &composite[j], s);
+            let linear = pose.rotation_in_world.mul_vec(g, force);
+            let angular = pose
+                .rotation_in_world
+                .mul_vec(g, moment)
+                .add(g, lever.cross(g, linear));
+            columns[body.joint.idx_v + k] = (linear, angular);
         }
     }
     (0..6)
