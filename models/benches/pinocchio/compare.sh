@@ -248,6 +248,8 @@ KIN_ROWS = [("forwardKinematics(q)", "forwardKinematics_q", "joint_placements", 
             ("forwardKinematics(q, v, a)", "forwardKinematics_qva",
              "joint_velocities+joint_acceleration_biases", True, False),
             ("computeJointJacobians", "computeJointJacobians", "joint_jacobians", True, False),
+            ("computeJointJacobians + getJointJacobian × all joints", "computeJointJacobians_getJointJacobian",
+             "joint_jacobians", True, False),
             ("computeJointJacobiansTimeVariation", "computeJointJacobiansTimeVariation",
              "joint_jacobians+joint_acceleration_biases", True, False),
             ("centerOfMass", "centerOfMass", "center_of_mass", True, False),
@@ -377,7 +379,9 @@ if kin_rows:
     out.append("Ours: the mechanisms of models/src/kinematics.rs; \"a + b\": one benchmark calling both. Not the")
     out.append("same outputs everywhere: forwardKinematics(q, v, a) also gives every joint's acceleration for a,")
     out.append("ours v and J̇v (the acceleration at q̈ = 0); computeJointJacobiansTimeVariation gives J and dJ/dt,")
-    out.append("ours J and J̇v; ccrba also gives h_g = A_g v, ours A_G alone. Frames: every BODY frame whose parent")
+    out.append("ours J and J̇v; ccrba also gives h_g = A_g v, ours A_G alone. computeJointJacobians gives one 6 × nv")
+    out.append("matrix (world frame at its origin) from which getJointJacobian shapes each joint's: ours gives every")
+    out.append("joint's, as the row with getJointJacobian for each joint does. Frames: every BODY frame whose parent")
     out.append("is a fixed joint in the URDF, and the quadruped's feet (frames.json).")
 text = "\n".join(out)
 print(text)

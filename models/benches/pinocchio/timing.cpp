@@ -414,6 +414,15 @@ void time_kinematics(const std::string& name, const Model& model, const States& 
          }, n, settings));
   report(name, "computeJointJacobians",
          time_calls([&](std::size_t k) { escape(&pinocchio::computeJointJacobians(model, data, s.q[k])); }, n, settings));
+  // Every joint's Jacobian as ours gives them (LOCAL_WORLD_ALIGNED, one 6 × nv matrix per
+  // joint): computeJointJacobians then getJointJacobian for each joint.
+  std::vector<MatrixXd> joint_jacobians(model.njoints, MatrixXd::Zero(6, model.nv));
+  report(name, "computeJointJacobians_getJointJacobian", time_calls([&](std::size_t k) {
+           pinocchio::computeJointJacobians(model, data, s.q[k]);
+           for (pinocchio::JointIndex j = 1; j < pinocchio::JointIndex(model.njoints); ++j)
+             pinocchio::getJointJacobian(model, data, j, pinocchio::LOCAL_WORLD_ALIGNED, joint_jacobians[j]);
+           escape(joint_jacobians.data());
+         }, n, settings));
   report(name, "computeJointJacobiansTimeVariation", time_calls([&](std::size_t k) {
            escape(&pinocchio::computeJointJacobiansTimeVariation(model, data, s.q[k], s.v[k]));
            escape(&data.J);
