@@ -21,6 +21,9 @@
 //! | `frame_placements(q)`, `frame_jacobians(q)`, `frame_jacobians_local(q)` | each operational frame's (R, p) in the world and its 6 × nv Jacobian, world-aligned at its origin or in its own axes (asked for by name) | [`frames`] |
 //! | `frame_velocities(q, v)`, `frame_acceleration_biases(q, v)` | each operational frame's [v; ω] and J̇ q̇, world axes at its origin (asked for by name) | [`frames`] + [`rnea`]'s forward sweep |
 //! | `centroidal_bias(q, v)` | Ȧ_G q̇ (asked for by name) | [`kinematics`] + [`rnea`]'s forward sweep |
+//! | `inverse_dynamics_derivatives(q, v, a)` | (∂τ/∂q, ∂τ/∂q̇), q in the tangent space (asked for by name) | [`rnea`] + [`derivatives`] |
+//! | `forward_dynamics_derivatives(q, v, tau)` | (∂q̈/∂q, ∂q̈/∂q̇) (asked for by name) | `forward_dynamics`' expansion + [`derivatives`] |
+//! | `mass_matrix_inverse(q)` | M(q)⁻¹ (asked for by name) | [`crba`] + [`ldlt`] |
 //! | `force_analysis(q, v, a)` | every reaction component and driving effort, with the pivots of R | [`statics`] + [`qr`] |
 //! | `constraint_residual(q)`, `constraint_jacobian(q)`, `constraint_bias(q, v)` | φ, Φ_q, γ of the loop closures | [`statics`] |
 //!
@@ -34,6 +37,7 @@
 //! To add a function: write its expansion (a module of [`crate::expand`]), then one
 //! [`Entry`] here.
 
+use crate::expand::derivatives::{self, With};
 use crate::expand::frames::{self, JacobianAxes};
 use crate::expand::geometry::BodyInertia;
 use crate::expand::rnea::{self, SweepInputs};
@@ -241,6 +245,27 @@ pub(crate) const CATALOG: &[Entry] = &[
         expand: frame_acceleration_biases,
     },
     Entry {
+        name: "inverse_dynamics_derivatives",
+        wanted: |m| m.outputs.inverse_dynamics_derivatives && m.nv > 0,
+        arrays: &[Array::Q, Array::V, Array::A],
+        loads: true,
+        expand: inverse_dynamics_derivatives,
+    },
+    Entry {
+        name: "forward_dynamics_derivatives",
+        wanted: |m| m.outputs.forward_dynamics_derivatives && m.nv > 0,
+        arrays: &[Array::Q, Array::V, Array::Tau],
+        loads: true,
+        expand: forward_dynamics_derivatives,
+    },
+    Entry {
+        name: "mass_matrix_inverse",
+        wanted: |m| m.outputs.mass_matrix_inverse && m.nv > 0,
+        arrays: &[Array::Q],
+        loads: false,
+        expand: mass_matrix_inverse,
+    },
+    Entry {
         name: "force_analysis",
         wanted: |m| m.outputs.force_analysis && m.statics.is_some(),
         arrays: &[Array::Q, Array::V, Array::A],
@@ -359,6 +384,110 @@ fn inverse_dynamics(model: &Model) -> Expanded {
         doc: "Inverse dynamics: τ = M(q) q̈ + C(q, q̇) q̇ + g(q) + b q̇ − Q, the joint forces that \
               produce the accelerations `a` at state (`q`, `v`) (recursive Newton–Euler, \
               shifted-inertia form)."
+            .to_owned(),
+    }
+}
+
+/// The two Jacobians of `outputs` with respect to q (tangent space) and q̇, as an output.
+fn state_jacobians(g: &Graph, model: &Model, outputs: &[Node]) -> Output {
+    Output::Tuple(vec![
+        Output::Matrix(derivatives::jacobian(
+            g,
+            model,
+            outputs,
+            With::Configuration,
+        )),
+        Output::Matrix(derivatives::jacobian(
+            g,
+            model,
+            outputs,
+            With::Array(Array::V),
+        )),
+    ])
+}
+
+/// The doc sentence on the configuration derivative's convention.
+const TANGENT_CONVENTION: &str = "Column j of a q-derivative is the derivative along q ⊕ t e_j \
+    (Pinocchio's convention: for a free base, the increment [δv; δω] is in the base's own \
+    frame, so its columns follow v, not the quaternion's four numbers).";
+
+fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let (v, a) = (
+        inputs(&g, Array::V, model.nv),
+        inputs(&g, Array::A, model.nv),
+    );
+    let sweep_inputs = SweepInputs {
+        velocity: &v,
+        acceleration: &a,
+        gravity: true,
+        loads: has_loads(model),
+    };
+    let tau = joint_forces(&g, model, &t, &i, &sweep_inputs);
+    let output = state_jacobians(&g, model, &tau);
+    Expanded {
+        graph: g,
+        output,
+        doc: format!(
+            "Derivatives of inverse dynamics: (∂τ/∂q, ∂τ/∂q̇), each nv × nv (row i: τ_i), at \
+             (`q`, `v`, `a`); ∂τ/∂q̈ = M(q). By forward-mode differentiation of the \
+             Newton–Euler expansion (Pinocchio's `computeRNEADerivatives`). \
+             {TANGENT_CONVENTION}"
+        ),
+    }
+}
+
+fn forward_dynamics_derivatives(model: &Model) -> Expanded {
+    let method = if forward_dynamics_prefers_aba(model) {
+        ForwardMethod::ArticulatedBody
+    } else {
+        ForwardMethod::MassMatrixLdlt
+    };
+    let (g, qdd) = forward_dynamics_by(model, method);
+    let output = state_jacobians(&g, model, &qdd);
+    Expanded {
+        graph: g,
+        output,
+        doc: format!(
+            "Derivatives of forward dynamics: (∂q̈/∂q, ∂q̈/∂q̇), each nv × nv (row i: q̈_i), \
+             at (`q`, `v`, `tau`); ∂q̈/∂τ = M(q)⁻¹ (`mass_matrix_inverse`). By forward-mode \
+             differentiation of the forward-dynamics expansion (Pinocchio's \
+             `computeABADerivatives`). {TANGENT_CONVENTION}"
+        ),
+    }
+}
+
+/// Whether `forward_dynamics` uses the articulated-body algorithm for this model.
+fn forward_dynamics_prefers_aba(model: &Model) -> bool {
+    let cost = |(g, qdd): &(Graph, Vec<Node>)| {
+        let c = g.op_count(qdd);
+        c.mul + c.add + 10 * c.div + 10 * c.sqrt
+    };
+    cost(&forward_dynamics_by(model, ForwardMethod::ArticulatedBody))
+        <= cost(&forward_dynamics_by(model, ForwardMethod::MassMatrixLdlt))
+}
+
+fn mass_matrix_inverse(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let nv = model.nv;
+    // Column k of M⁻¹ solves M x = e_k; the factorization's nodes are shared by every column.
+    let columns: Vec<Vec<Node>> = (0..nv)
+        .map(|k| {
+            let unit = (0..nv)
+                .map(|r| if r == k { g.one() } else { g.zero() })
+                .collect();
+            ldlt::solve(&g, model, regrouped_mass_matrix(&g, model, &t, &i), unit)
+        })
+        .collect();
+    let rows = (0..nv)
+        .map(|r| columns.iter().map(|column| column[r]).collect())
+        .collect();
+    Expanded {
+        graph: g,
+        output: Output::Matrix(rows),
+        doc: "The inverse of the mass matrix M(q)⁻¹ (armature included), nv × nv, by the \
+              tree-sparse LDLᵀ factorization of M (Pinocchio's `computeMinverse`). A singular \
+              M gives non-finite values, never a panic."
             .to_owned(),
     }
 }

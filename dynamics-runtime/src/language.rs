@@ -118,10 +118,16 @@
 //! | `frame_jacobians_local` | the same in the frame's own axes (`LOCAL`) | `q` | `[[[T; NV]; 6]; NF]` |
 //! | `frame_velocities` | per frame, [v; ω] = J q̇, world axes | `q, v` | `[[T; 6]; NF]` |
 //! | `frame_acceleration_biases` | per frame, J̇ q̇: its classical acceleration [a; α] at q̈ = 0 without gravity, world axes | `q, v` | `[[T; 6]; NF]` |
+//! | `inverse_dynamics_derivatives` | (∂τ/∂q, ∂τ/∂q̇); ∂τ/∂q̈ = M | `q, v, a` (+ loads) | `([[T; NV]; NV], [[T; NV]; NV])` |
+//! | `forward_dynamics_derivatives` | (∂q̈/∂q, ∂q̈/∂q̇); ∂q̈/∂τ = M⁻¹ | `q, v, tau` (+ loads) | `([[T; NV]; NV], [[T; NV]; NV])` |
+//! | `mass_matrix_inverse` | M(q)⁻¹ | `q` | `[[T; NV]; NV]` |
 //!
 //! `kinetic_energy` and `potential_energy` come together, as do the three constraint
-//! functions. The kinematics outputs (from `joint_placements` on) are generated only when
-//! named; a free base's columns are its velocity [v_P; ω] in its own frame. NB is the number
+//! functions. The kinematics and derivative outputs (from `joint_placements` on) are
+//! generated only when named. A derivative with respect to q is taken in the tangent space,
+//! as Pinocchio's: column j is the derivative along q ⊕ t e_j, which for a free base is the
+//! increment [δv; δω] in the base's own frame (the order of v), not the quaternion's four
+//! numbers; a free base's columns are its velocity [v_P; ω] in its own frame. NB is the number
 //! of moving bodies (bodies welded by fixed joints count as one), NF the number of frames.
 //!
 //! ```rust

@@ -17,6 +17,7 @@
 //! | [`ldlt`] | the tree-sparse LDLᵀ solve of M q̈ = τ − bias |
 //! | [`energy`] | kinetic and potential energy |
 //! | [`kinematics`] | body poses, point Jacobians, the centre of mass, its Jacobian, the centroidal momentum matrix and its rate |
+//! | [`derivatives`] | forward-mode derivatives of an expanded function with respect to q (tangent space), v, a or τ |
 //! | [`frames`] | operational frames: poses, Jacobians (world-aligned and local), J̇ q̇ |
 //! | [`statics`] | the balance equations of the force analysis and the loop closures |
 //! | [`qr`] | a Givens QR solve for the force analysis |
@@ -24,6 +25,7 @@
 pub(crate) mod aba;
 pub(crate) mod coriolis;
 pub(crate) mod crba;
+pub(crate) mod derivatives;
 pub(crate) mod energy;
 pub(crate) mod frames;
 pub(crate) mod geometry;

@@ -81,13 +81,19 @@ pub struct Outputs {
     pub frame_acceleration_biases: bool,
     /// Ȧ_G q̇, the rate of the centroidal momentum at q̈ = 0.
     pub centroidal_bias: bool,
+    /// ∂τ/∂q and ∂τ/∂q̇ of inverse dynamics.
+    pub inverse_dynamics_derivatives: bool,
+    /// ∂q̈/∂q and ∂q̈/∂q̇ of forward dynamics.
+    pub forward_dynamics_derivatives: bool,
+    /// M(q)⁻¹.
+    pub mass_matrix_inverse: bool,
 }
 
 impl Outputs {
     /// The output names the language accepts: the names of the functions they generate
     /// (`kinetic_energy` and `potential_energy` come together, as do the three constraint
     /// functions).
-    pub const NAMES: [&'static str; 28] = [
+    pub const NAMES: [&'static str; 31] = [
         "inverse_dynamics",
         "gravity",
         "bias",
@@ -116,6 +122,9 @@ impl Outputs {
         "frame_velocities",
         "frame_acceleration_biases",
         "centroidal_bias",
+        "inverse_dynamics_derivatives",
+        "forward_dynamics_derivatives",
+        "mass_matrix_inverse",
     ];
 
     /// Short names accepted too, each with the name it stands for.
@@ -156,6 +165,9 @@ impl Outputs {
             frame_velocities: false,
             frame_acceleration_biases: false,
             centroidal_bias: false,
+            inverse_dynamics_derivatives: false,
+            forward_dynamics_derivatives: false,
+            mass_matrix_inverse: false,
         }
     }
 
@@ -206,6 +218,9 @@ impl Outputs {
             "frame_velocities" => &mut self.frame_velocities,
             "frame_acceleration_biases" => &mut self.frame_acceleration_biases,
             "centroidal_bias" => &mut self.centroidal_bias,
+            "inverse_dynamics_derivatives" => &mut self.inverse_dynamics_derivatives,
+            "forward_dynamics_derivatives" => &mut self.forward_dynamics_derivatives,
+            "mass_matrix_inverse" => &mut self.mass_matrix_inverse,
             "constraint_residual" | "constraint_jacobian" | "constraint_bias" => {
                 &mut self.constraints
             }
@@ -225,6 +240,9 @@ impl Outputs {
             || self.forward_dynamics
             || self.forward_dynamics_aba
             || self.forward_dynamics_ldlt
+            || self.inverse_dynamics_derivatives
+            || self.forward_dynamics_derivatives
+            || self.mass_matrix_inverse
     }
 }
 

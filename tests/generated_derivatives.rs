@@ -1,0 +1,312 @@
+//! The generated derivatives of the dynamics and M⁻¹:
+//! - against Pinocchio's `computeRNEADerivatives` (∂τ/∂q, ∂τ/∂v), `computeABADerivatives`
+//!   (∂q̈/∂q, ∂q̈/∂v) and its M⁻¹ for the five anchor robots, imported from the same URDF
+//!   files, at Pinocchio's 20 sampled states (`tests/data/pinocchio_ext/<name>_derivatives.json`),
+//!   within 1e-10 · (1 + max |entry|) per matrix;
+//! - on a free-floating branched tree with a prismatic joint, against central differences
+//!   along q ⊕ t e_j (the free base moved on its manifold by `integrate_configuration`, so
+//!   the q-columns are in the tangent space, as Pinocchio's) and along v, and M⁻¹ M = 1.
+
+use dynamics_runtime::{integrate_configuration, mechanism};
+use serde::Deserialize;
+
+mechanism! {
+    pub struct PendulumDerivatives;
+    urdf: "../models/urdf/pendulum.urdf";
+    gravity: [0.0, -9.81, 0.0];
+    outputs: [inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse];
+}
+
+mechanism! {
+    pub struct DoublePendulumDerivatives;
+    urdf: "../models/urdf/double_pendulum.urdf";
+    gravity: [0.0, -9.81, 0.0];
+    outputs: [inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse];
+}
+
+mechanism! {
+    pub struct Planar3Derivatives;
+    urdf: "../models/urdf/planar3.urdf";
+    gravity: [0.0, -9.81, 0.0];
+    outputs: [inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse];
+    allow: [triangle_inequality];
+}
+
+mechanism! {
+    pub struct Ur5Derivatives;
+    urdf: "../models/urdf/ur5.urdf";
+    outputs: [inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse];
+}
+
+mechanism! {
+    pub struct PandaDerivatives;
+    urdf: "../models/urdf/panda.urdf";
+    outputs: [inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse];
+}
+
+mechanism! {
+    /// A free-floating base with two branches, one ending in a slider.
+    pub struct FreeTreeDerivatives;
+    outputs: [inverse_dynamics, forward_dynamics, mass_matrix, inverse_dynamics_derivatives,
+              forward_dynamics_derivatives, mass_matrix_inverse];
+    body base { mass: 3.0, com: [0.01, 0.02, -0.03], inertia: [[0.1, 0.01, 0.0], [0.01, 0.12, 0.02], [0.0, 0.02, 0.09]] }
+    body left { mass: 1.0, com: [0.1, 0.0, 0.0], shape: rod(length: 0.2, axis: x) }
+    body right { mass: 0.7, com: [0.0, 0.05, 0.01], shape: box(size: [0.05, 0.1, 0.02]) }
+    body slider { mass: 0.4, com: [0.02, 0.0, 0.01], shape: sphere(radius: 0.03) }
+    joint float: free(ground -> base);
+    joint hip_left: revolute(base -> left) { axis: [0.3, 0.2, 1.0], at: [0.1, 0.1, 0.0], rotation: rpy(0.1, 0.2, 0.3), damping: 0.2 }
+    joint hip_right: revolute(base -> right) { axis: y, at: [0.1, -0.1, 0.0], armature: 0.05 }
+    joint slide: prismatic(left -> slider) { axis: x, at: [0.2, 0.0, 0.0] }
+}
+
+#[derive(Deserialize)]
+struct Sample {
+    q: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+    tau: Vec<f64>,
+    dtau_dq: Vec<Vec<f64>>,
+    dtau_dv: Vec<Vec<f64>>,
+    ddq_dq: Vec<Vec<f64>>,
+    ddq_dv: Vec<Vec<f64>>,
+    minv: Vec<Vec<f64>>,
+}
+
+#[derive(Deserialize)]
+struct Samples {
+    samples: Vec<Sample>,
+}
+
+fn samples(name: &str) -> Vec<Sample> {
+    let path = format!(
+        "{}/data/pinocchio_ext/{name}_derivatives.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let file: Samples = serde_json::from_str(&text).unwrap_or_else(|e| panic!("{path}: {e}"));
+    assert_eq!(file.samples.len(), 20, "{path}");
+    file.samples
+}
+
+/// Asserts every entry within `tolerance · (1 + max |expected|)`.
+fn assert_matrix<const N: usize>(
+    got: &[[f64; N]; N],
+    expected: &[Vec<f64>],
+    tolerance: f64,
+    what: &str,
+) {
+    let scale = 1.0
+        + expected
+            .iter()
+            .flatten()
+            .fold(0.0_f64, |m, x| m.max(x.abs()));
+    for r in 0..N {
+        for c in 0..N {
+            let (g, e) = (got[r][c], expected[r][c]);
+            assert!(
+                (g - e).abs() <= tolerance * scale,
+                "{what}[{r}][{c}]: generated {g}, expected {e} (scale {scale})"
+            );
+        }
+    }
+}
+
+type Pair<const N: usize> = ([[f64; N]; N], [[f64; N]; N]);
+
+/// The three derivative functions of one robot.
+struct Derivatives<const NQ: usize, const NV: usize> {
+    inverse: fn(&[f64; NQ], &[f64; NV], &[f64; NV]) -> Pair<NV>,
+    forward: fn(&[f64; NQ], &[f64; NV], &[f64; NV]) -> Pair<NV>,
+    minv: fn(&[f64; NQ]) -> [[f64; NV]; NV],
+}
+
+fn check_against_pinocchio<const NQ: usize, const NV: usize>(name: &str, f: &Derivatives<NQ, NV>) {
+    for (k, s) in samples(name).iter().enumerate() {
+        let q: [f64; NQ] = s.q.clone().try_into().expect("nq");
+        let v: [f64; NV] = s.v.clone().try_into().expect("nv");
+        let a: [f64; NV] = s.a.clone().try_into().expect("nv");
+        let tau: [f64; NV] = s.tau.clone().try_into().expect("nv");
+        let (dtau_dq, dtau_dv) = (f.inverse)(&q, &v, &a);
+        assert_matrix(
+            &dtau_dq,
+            &s.dtau_dq,
+            1e-10,
+            &format!("{name} sample {k} ∂τ/∂q"),
+        );
+        assert_matrix(
+            &dtau_dv,
+            &s.dtau_dv,
+            1e-10,
+            &format!("{name} sample {k} ∂τ/∂v"),
+        );
+        let (ddq_dq, ddq_dv) = (f.forward)(&q, &v, &tau);
+        assert_matrix(
+            &ddq_dq,
+            &s.ddq_dq,
+            1e-10,
+            &format!("{name} sample {k} ∂q̈/∂q"),
+        );
+        assert_matrix(
+            &ddq_dv,
+            &s.ddq_dv,
+            1e-10,
+            &format!("{name} sample {k} ∂q̈/∂v"),
+        );
+        assert_matrix(
+            &(f.minv)(&q),
+            &s.minv,
+            1e-10,
+            &format!("{name} sample {k} M⁻¹"),
+        );
+    }
+}
+
+#[test]
+fn derivatives_match_pinocchio() {
+    check_against_pinocchio(
+        "pendulum",
+        &Derivatives {
+            inverse: PendulumDerivatives::inverse_dynamics_derivatives::<f64>,
+            forward: PendulumDerivatives::forward_dynamics_derivatives::<f64>,
+            minv: PendulumDerivatives::mass_matrix_inverse::<f64>,
+        },
+    );
+    check_against_pinocchio(
+        "double_pendulum",
+        &Derivatives {
+            inverse: DoublePendulumDerivatives::inverse_dynamics_derivatives::<f64>,
+            forward: DoublePendulumDerivatives::forward_dynamics_derivatives::<f64>,
+            minv: DoublePendulumDerivatives::mass_matrix_inverse::<f64>,
+        },
+    );
+    check_against_pinocchio(
+        "planar3",
+        &Derivatives {
+            inverse: Planar3Derivatives::inverse_dynamics_derivatives::<f64>,
+            forward: Planar3Derivatives::forward_dynamics_derivatives::<f64>,
+            minv: Planar3Derivatives::mass_matrix_inverse::<f64>,
+        },
+    );
+    check_against_pinocchio(
+        "ur5",
+        &Derivatives {
+            inverse: Ur5Derivatives::inverse_dynamics_derivatives::<f64>,
+            forward: Ur5Derivatives::forward_dynamics_derivatives::<f64>,
+            minv: Ur5Derivatives::mass_matrix_inverse::<f64>,
+        },
+    );
+    check_against_pinocchio(
+        "panda",
+        &Derivatives {
+            inverse: PandaDerivatives::inverse_dynamics_derivatives::<f64>,
+            forward: PandaDerivatives::forward_dynamics_derivatives::<f64>,
+            minv: PandaDerivatives::mass_matrix_inverse::<f64>,
+        },
+    );
+}
+
+/// A state of the free tree: q (position, a unit quaternion, three joint values), v, a.
+fn free_tree_state(k: usize) -> ([f64; 10], [f64; 9], [f64; 9]) {
+    let s = k as f64;
+    let quaternion = [0.1 + 0.05 * s, -0.2, 0.3, 0.9 - 0.1 * s];
+    let norm = quaternion.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let q = [
+        0.3 - 0.1 * s,
+        0.2 * s,
+        1.0,
+        quaternion[0] / norm,
+        quaternion[1] / norm,
+        quaternion[2] / norm,
+        quaternion[3] / norm,
+        (0.7 + s).sin(),
+        (0.3 * s).cos(),
+        0.05 * s,
+    ];
+    let v = [
+        0.3,
+        -0.2 + 0.1 * s,
+        0.1,
+        0.5 - 0.2 * s,
+        0.4,
+        -0.3,
+        1.1,
+        -0.7 + 0.3 * s,
+        0.2,
+    ];
+    let a = [0.1, 0.4, -0.3, 0.2 * s, -0.5, 0.6, -1.0, 0.8, 0.3 - 0.1 * s];
+    (q, v, a)
+}
+
+/// q ⊕ t e_col: the free base moves on its manifold.
+fn moved(q: &[f64; 10], col: usize, t: f64) -> [f64; 10] {
+    let mut e = [0.0; 9];
+    e[col] = 1.0;
+    let mut out = [0.0; 10];
+    integrate_configuration(q, &e, t, &[(0, 0)], &mut out);
+    out
+}
+
+/// Central differences of `f` along q ⊕ t e_j and along v + t e_j, column by column.
+fn central_differences(
+    f: impl Fn(&[f64; 10], &[f64; 9]) -> [f64; 9],
+    q: &[f64; 10],
+    v: &[f64; 9],
+) -> Pair<9> {
+    let h = 1e-6;
+    let (mut by_q, mut by_v) = ([[0.0; 9]; 9], [[0.0; 9]; 9]);
+    for col in 0..9 {
+        let (plus, minus) = (f(&moved(q, col, h), v), f(&moved(q, col, -h), v));
+        let (mut v_plus, mut v_minus) = (*v, *v);
+        v_plus[col] += h;
+        v_minus[col] -= h;
+        let (dv_plus, dv_minus) = (f(q, &v_plus), f(q, &v_minus));
+        for row in 0..9 {
+            by_q[row][col] = (plus[row] - minus[row]) / (2.0 * h);
+            by_v[row][col] = (dv_plus[row] - dv_minus[row]) / (2.0 * h);
+        }
+    }
+    (by_q, by_v)
+}
+
+fn rows(m: &[[f64; 9]; 9]) -> Vec<Vec<f64>> {
+    m.iter().map(|r| r.to_vec()).collect()
+}
+
+#[test]
+fn derivatives_of_a_free_tree_are_the_central_differences() {
+    for k in 0..6 {
+        let (q, v, a) = free_tree_state(k);
+        let (dtau_dq, dtau_dv) = FreeTreeDerivatives::inverse_dynamics_derivatives(&q, &v, &a);
+        let (fd_q, fd_v) = central_differences(
+            |q, v| FreeTreeDerivatives::inverse_dynamics(q, v, &a),
+            &q,
+            &v,
+        );
+        assert_matrix(&dtau_dq, &rows(&fd_q), 1e-7, &format!("state {k} ∂τ/∂q"));
+        assert_matrix(&dtau_dv, &rows(&fd_v), 1e-7, &format!("state {k} ∂τ/∂v"));
+        let tau = FreeTreeDerivatives::inverse_dynamics(&q, &v, &a);
+        let (ddq_dq, ddq_dv) = FreeTreeDerivatives::forward_dynamics_derivatives(&q, &v, &tau);
+        let (fd_q, fd_v) = central_differences(
+            |q, v| FreeTreeDerivatives::forward_dynamics(q, v, &tau),
+            &q,
+            &v,
+        );
+        assert_matrix(&ddq_dq, &rows(&fd_q), 1e-6, &format!("state {k} ∂q̈/∂q"));
+        assert_matrix(&ddq_dv, &rows(&fd_v), 1e-6, &format!("state {k} ∂q̈/∂v"));
+        // M⁻¹ M = 1.
+        let (m, m_inv) = (
+            FreeTreeDerivatives::mass_matrix(&q),
+            FreeTreeDerivatives::mass_matrix_inverse(&q),
+        );
+        let mut product = [[0.0; 9]; 9];
+        for r in 0..9 {
+            for c in 0..9 {
+                product[r][c] = (0..9).map(|i| m_inv[r][i] * m[i][c]).sum();
+            }
+        }
+        let identity: Vec<Vec<f64>> = (0..9)
+            .map(|r| (0..9).map(|c| if r == c { 1.0 } else { 0.0 }).collect())
+            .collect();
+        assert_matrix(&product, &identity, 1e-12, &format!("state {k} M⁻¹ M"));
+    }
+}
