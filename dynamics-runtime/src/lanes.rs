@@ -44,7 +44,8 @@ use core::fmt;
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 use num_traits::{One, Zero};
 
-/// A SIMD vector of lanes that is itself a [`Scalar`]: [`F64x4`] and [`F32x8`].
+/// A SIMD vector of lanes that is itself a [`Scalar`]: [`F64x4`] and [`F32x8`]. What the
+/// batch helpers of [`crate::batch`] pack states into.
 pub trait Lanes: Scalar {
     /// The number in each lane.
     type Element: Scalar;

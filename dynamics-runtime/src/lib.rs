@@ -8,7 +8,7 @@
 //! | what | items |
 //! | --- | --- |
 //! | numbers | [`Scalar`] (`f32`, `f64`, [`DoubleDouble`], the SIMD lanes [`F64x4`] and [`F32x8`]), [`Real`] |
-//! | many states per call | [`F64x4`], [`F32x8`] ([`Lanes`], contract in [`lanes`]) |
+//! | many states per call | [`F64x4`], [`F32x8`] ([`Lanes`], contract in [`lanes`]); [`batch`]: a generated function over slices of states, four or eight per call |
 //! | a declared mechanism | the [`mechanism!`] macro (its language: [`language`]); the [`Mechanism`], [`Dynamics`], [`Lagrangian`] and [`Energy`] traits its type implements |
 //! | the mechanism as data | [`Model`], built and validated by [`ModelBuilder`] |
 //! | the reference | [`Reference`]: inverse and forward dynamics, M, C, energies, joint reactions, poses |
@@ -18,6 +18,7 @@
 
 extern crate self as dynamics_runtime;
 
+pub mod batch;
 pub mod closure;
 mod double_double;
 mod dynamics;
