@@ -22,6 +22,10 @@
 //! With the `rayon` feature (off by default) `par_mapN` does the same on all of rayon's
 //! threads, in blocks of 16 packs: the same results, bit for bit.
 //!
+//! For speed, build with `-C target-cpu=native` (or `+avx2,+fma`): the lanes are then one
+//! AVX register each: 2.2 to 2.9× the throughput of `f64` calls for inverse and forward
+//! dynamics (the [`lanes`](crate::lanes) module, "Speed").
+//!
 //! # Example
 //!
 //! One line per generated function: the generic generated function itself is the `f`
