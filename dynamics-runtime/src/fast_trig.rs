@@ -47,6 +47,12 @@
 //!    for n mod 4 = 0, 1, 2, 3: an xor-swap under an all-ones-or-zero mask and two sign-bit
 //!    xors, on `to_bits`.
 //!
+//! The kernel is written once, generic over [`Lane`]: `f64` here, and the SIMD lanes of
+//! [`crate::lanes`] (`F64x4` directly, `F32x8` widened to `f64`), where every operation is
+//! the same `f64` operation on each lane, so each lane is bit for bit [`sin_cos`] of its
+//! angle (tested there). Making it generic left the `f64` machine code as it was (the
+//! assembly of `sin_cos`, `sin_cos_mul_add` and `sin_cos_array` compared before and after).
+//!
 //! # Accuracy (measured by the tests below, against std, i.e. glibc)
 //!
 //! - |x| ≤ 2²⁰·π/2 ≈ 1.6·10⁶ (exact n·PIO2_1, n·PIO2_2): at most 1 ulp from std in the
@@ -99,13 +105,99 @@ const C: [f64; 6] = [
     -1.135_873_277_663_583_8e-11,
 ];
 
+/// What the kernel asks of its number type: `f64` itself, or a SIMD vector of f64 lanes
+/// (`crate::lanes`) whose `+`, `−` and `×` are, lane by lane, those of `f64` (IEEE-754
+/// binary64, rounding to nearest), so that each lane is bit for bit [`sin_cos`] of its
+/// angle. One kernel, [`sin_cos_impl`], serves both: the polynomials and the order of the
+/// operations exist once.
+pub(crate) trait Lane:
+    Copy + core::ops::Add<Output = Self> + core::ops::Sub<Output = Self> + core::ops::Mul<Output = Self>
+{
+    /// The bits of the lanes, as unsigned 64-bit integers.
+    type Bits: LaneBits;
+    /// Every lane `x`.
+    fn splat(x: f64) -> Self;
+    /// `self · a + b` with one rounding per lane (only the `FUSED` kernel calls it).
+    fn fused_mul_add(self, a: Self, b: Self) -> Self;
+    /// Each lane's bits (`f64::to_bits`).
+    fn to_bits(self) -> Self::Bits;
+    /// Each lane from its bits (`f64::from_bits`).
+    fn from_bits(bits: Self::Bits) -> Self;
+}
+
+/// Lane-wise integer operations on the bits of [`Lane`]s, as `u64`'s.
+pub(crate) trait LaneBits:
+    Copy
+    + core::ops::BitAnd<Output = Self>
+    + core::ops::BitOr<Output = Self>
+    + core::ops::BitXor<Output = Self>
+{
+    /// Every lane `x`.
+    fn splat(x: u64) -> Self;
+    /// `u64::wrapping_add`, lane by lane.
+    fn wrapping_add(self, other: Self) -> Self;
+    /// `u64::wrapping_sub`, lane by lane.
+    fn wrapping_sub(self, other: Self) -> Self;
+    /// `self << n` (n < 64), lane by lane.
+    fn shift_left(self, n: u32) -> Self;
+    /// `self >> n` (logical, n < 64), lane by lane.
+    fn shift_right(self, n: u32) -> Self;
+}
+
+impl Lane for f64 {
+    type Bits = u64;
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn fused_mul_add(self, a: Self, b: Self) -> Self {
+        f64::mul_add(self, a, b)
+    }
+    #[inline(always)]
+    fn to_bits(self) -> u64 {
+        f64::to_bits(self)
+    }
+    #[inline(always)]
+    fn from_bits(bits: u64) -> Self {
+        f64::from_bits(bits)
+    }
+}
+
+impl LaneBits for u64 {
+    #[inline(always)]
+    fn splat(x: u64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn wrapping_add(self, other: Self) -> Self {
+        u64::wrapping_add(self, other)
+    }
+    #[inline(always)]
+    fn wrapping_sub(self, other: Self) -> Self {
+        u64::wrapping_sub(self, other)
+    }
+    #[inline(always)]
+    fn shift_left(self, n: u32) -> Self {
+        self << n
+    }
+    #[inline(always)]
+    fn shift_right(self, n: u32) -> Self {
+        self >> n
+    }
+}
+
 /// One Horner step on both lanes: [p₀ z + c₀, p₁ z + c₁], fused or not.
 #[inline(always)]
-fn step<const FUSED: bool>(p: [f64; 2], z: f64, c0: f64, c1: f64) -> [f64; 2] {
+fn step<V: Lane, const FUSED: bool>(p: [f64; 2], z: V, c0: f64, c1: f64) -> [V; 2] {
+    let (p, c) = (
+        [V::splat(p[0]), V::splat(p[1])],
+        [V::splat(c0), V::splat(c1)],
+    );
     if FUSED {
-        [p[0].mul_add(z, c0), p[1].mul_add(z, c1)]
+        [p[0].fused_mul_add(z, c[0]), p[1].fused_mul_add(z, c[1])]
     } else {
-        [p[0] * z + c0, p[1] * z + c1]
+        [p[0] * z + c[0], p[1] * z + c[1]]
     }
 }
 
@@ -113,7 +205,7 @@ fn step<const FUSED: bool>(p: [f64; 2], z: f64, c0: f64, c1: f64) -> [f64; 2] {
 /// |x| ≤ 1.6·10⁶; see the module documentation for the method and larger |x|.
 #[inline(always)]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    sin_cos_impl::<false>(x)
+    sin_cos_impl::<f64, false>(x)
 }
 
 /// Angles per SIMD register: four with AVX (`-C target-cpu=native` on a current x86-64),
@@ -154,20 +246,30 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
 /// FMA, as the workspace builds, each `mul_add` is a call to the C library's `fma`.
 #[inline(always)]
 pub fn sin_cos_mul_add(x: f64) -> (f64, f64) {
-    sin_cos_impl::<true>(x)
+    sin_cos_impl::<f64, true>(x)
 }
 
+/// [`sin_cos`] of each lane of `x`: bit for bit, lane by lane, what [`sin_cos`] gives for
+/// that lane's angle (the same operations in the same order). For `crate::lanes`.
 #[inline(always)]
-fn sin_cos_impl<const FUSED: bool>(x: f64) -> (f64, f64) {
+pub(crate) fn sin_cos_lanes<V: Lane>(x: V) -> (V, V) {
+    sin_cos_impl::<V, false>(x)
+}
+
+/// The kernel, on one angle (`f64`) or on the lanes of a SIMD vector ([`Lane`]).
+#[inline(always)]
+fn sin_cos_impl<V: Lane, const FUSED: bool>(x: V) -> (V, V) {
+    let k = V::splat;
+    let b = <V::Bits as LaneBits>::splat;
     // 1. n = nearest integer to x·2/π; its last two bits are those of `shifted`.
-    let shifted = x * FRAC_2_PI + ROUND;
-    let n = shifted - ROUND;
+    let shifted = x * k(FRAC_2_PI) + k(ROUND);
+    let n = shifted - k(ROUND);
     let quadrant = shifted.to_bits();
 
     // 2. r + rl = x − n·π/2 (see the module documentation for why each step is exact).
-    let a = x - n * PIO2_1;
-    let p2 = n * PIO2_2;
-    let p3 = n * PIO2_3;
+    let a = x - n * k(PIO2_1);
+    let p2 = n * k(PIO2_2);
+    let p3 = n * k(PIO2_3);
     let tail = p2 + p3;
     let tail_low = (p2 - tail) + p3;
     let r = a - tail;
@@ -175,14 +277,14 @@ fn sin_cos_impl<const FUSED: bool>(x: f64) -> (f64, f64) {
 
     // 3. The polynomials, both lanes at once.
     let z = r * r;
-    let half_z = 0.5 * z;
+    let half_z = k(0.5) * z;
     let z2 = z * z;
     // Estrin's scheme, (c0 + c1 z) + z² (c2 + c3 z) + z⁴ (c4 + c5 z): one multiplication
     // more than Horner's and a third of its latency (measured: 16 % faster in a dependent
     // chain, 5 % in a stream of independent angles).
-    let lo = step::<FUSED>([S[1], C[1]], z, S[0], C[0]);
-    let mid = step::<FUSED>([S[3], C[3]], z, S[2], C[2]);
-    let hi = step::<FUSED>([S[5], C[5]], z, S[4], C[4]);
+    let lo = step::<V, FUSED>([S[1], C[1]], z, S[0], C[0]);
+    let mid = step::<V, FUSED>([S[3], C[3]], z, S[2], C[2]);
+    let hi = step::<V, FUSED>([S[5], C[5]], z, S[4], C[4]);
     let z4 = z2 * z2;
     let p = [
         lo[0] + (z2 * mid[0] + z4 * hi[0]),
@@ -190,23 +292,25 @@ fn sin_cos_impl<const FUSED: bool>(x: f64) -> (f64, f64) {
     ];
     let scaled = [(r * z) * p[0], z2 * p[1]];
     let sin = r + (scaled[0] + (rl - rl * half_z));
-    let w = 1.0 - half_z;
-    let cos = w + (((1.0 - w) - half_z) + (scaled[1] - r * rl));
+    let w = k(1.0) - half_z;
+    let cos = w + (((k(1.0) - w) - half_z) + (scaled[1] - r * rl));
 
     // 4. Quadrant: swap when n is odd, negate sin when n mod 4 ∈ {2, 3}, cos when ∈ {1, 2}.
-    let swap = (quadrant & 1).wrapping_neg();
-    let sin_sign = (quadrant & 2) << 62;
-    let cos_sign = (quadrant.wrapping_add(1) & 2) << 62;
-    // All ones when |x| ≥ 2⁵⁰ (or NaN): or-ing them in makes a NaN.
-    let huge = (HUGE_BITS
-        .wrapping_sub(1)
-        .wrapping_sub(x.to_bits() & !(1 << 63)) as i64
-        >> 63) as u64;
+    let swap = b(0).wrapping_sub(quadrant & b(1));
+    let sin_sign = (quadrant & b(2)).shift_left(62);
+    let cos_sign = (quadrant.wrapping_add(b(1)) & b(2)).shift_left(62);
+    // All ones when |x| ≥ 2⁵⁰ (or NaN): or-ing them in makes a NaN. (2⁵⁰ − 1 − |x|'s bits
+    // is negative exactly then; its sign bit, negated, is the mask.)
+    let huge = b(0).wrapping_sub(
+        b(HUGE_BITS - 1)
+            .wrapping_sub(x.to_bits() & b(!(1 << 63)))
+            .shift_right(63),
+    );
     let (sb, cb) = (sin.to_bits(), cos.to_bits());
     let d = (sb ^ cb) & swap;
     (
-        f64::from_bits((sb ^ d ^ sin_sign) | huge),
-        f64::from_bits((cb ^ d ^ cos_sign) | huge),
+        V::from_bits((sb ^ d ^ sin_sign) | huge),
+        V::from_bits((cb ^ d ^ cos_sign) | huge),
     )
 }
 

@@ -16,8 +16,8 @@
 //!
 //! The choice is a relaxed load of one byte and a branch that never changes within a
 //! process (perfectly predicted); it depends on the CPU, never on data. It is made at the
-//! first call of [`wide`] (or of any generated function), which reads the environment and
-//! so allocates once: a real-time program calls [`wide`] during its start-up, before its
+//! first call of [`wide()`] (or of any generated function), which reads the environment and
+//! so allocates once: a real-time program calls [`wide()`] during its start-up, before its
 //! loop (as `models/examples/control_loop.rs` does).
 
 #![allow(unsafe_code)] // one call of a `#[target_feature]` function; proof at the call
@@ -76,7 +76,7 @@ fn cpu_has_avx2_fma() -> bool {
     false
 }
 
-/// Runs a whole generated function: `wide()` when [`wide`] says so, `narrow()` otherwise,
+/// Runs a whole generated function: `wide()` when [`wide()`] says so, `narrow()` otherwise,
 /// inlined into the caller.
 #[inline(always)]
 pub(crate) fn run<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {

@@ -7,7 +7,8 @@
 //!
 //! | what | items |
 //! | --- | --- |
-//! | numbers | [`Scalar`] (`f32`, `f64`, [`DoubleDouble`]), [`Real`] |
+//! | numbers | [`Scalar`] (`f32`, `f64`, [`DoubleDouble`], the SIMD lanes [`F64x4`] and [`F32x8`]), [`Real`] |
+//! | many states per call | [`F64x4`], [`F32x8`] ([`Lanes`], contract in [`lanes`]); [`batch`]: a generated function over slices of states, four or eight per call |
 //! | a declared mechanism | the [`mechanism!`] macro (its language: [`language`]); the [`Mechanism`], [`Dynamics`], [`Lagrangian`] and [`Energy`] traits its type implements |
 //! | the mechanism as data | [`Model`], built and validated by [`ModelBuilder`] |
 //! | the reference | [`Reference`]: inverse and forward dynamics, M, C, energies, joint reactions, poses |
@@ -17,12 +18,14 @@
 
 extern crate self as dynamics_runtime;
 
+pub mod batch;
 pub mod closure;
 mod double_double;
 mod dynamics;
 mod fast_trig;
 pub mod integrators;
 pub mod isa;
+pub mod lanes;
 pub mod language;
 mod mechanism;
 mod model;
@@ -35,6 +38,7 @@ pub use dynamics::{
     integrate_configuration, try_integrate_configuration, Dynamics, Energy, Lagrangian, LayoutError,
 };
 pub use dynamics_macros::mechanism;
+pub use lanes::{F32x8, F64x4, Lanes};
 pub use mechanism::{FunctionCost, Mechanism};
 pub use model::{
     BodySpec, FrameSpec, Inertia, JointKind, JointSpec, JointType, Model, ModelBuilder, ModelError,

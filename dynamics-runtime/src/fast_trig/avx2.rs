@@ -48,7 +48,7 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> Option<([f64; N], [f64; N]
     Some((sin, cos))
 }
 
-/// The four lanes of `x`, step by step as `super::sin_cos_impl::<true>`.
+/// The four lanes of `x`, step by step as `super::sin_cos_impl::<f64, true>`.
 ///
 /// # Safety
 /// The CPU must have AVX2 and FMA.
