@@ -39,7 +39,7 @@
 
 use crate::expand::derivatives::{self, With};
 use crate::expand::frames::{self, JacobianAxes};
-use crate::expand::geometry::BodyInertia;
+use crate::expand::geometry::{BodyInertia, JointTransform};
 use crate::expand::rnea::{self, SweepInputs};
 use crate::expand::{
     aba, coriolis, crba, energy, fresh_graph, inputs, kinematics, ldlt, qr, statics,
@@ -355,7 +355,7 @@ fn has_loads(model: &Model) -> bool {
 fn joint_forces(
     g: &Graph,
     model: &Model,
-    transforms: &[crate::expand::geometry::JointTransform],
+    transforms: &[JointTransform],
     inertias: &[BodyInertia],
     inputs: &SweepInputs,
 ) -> Vec<Node> {
@@ -443,18 +443,91 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
     } else {
         ForwardMethod::MassMatrixLdlt
     };
-    let (g, qdd) = forward_dynamics_by(model, method);
-    let output = state_jacobians(&g, model, &qdd);
+    // Differentiating the forward-dynamics expansion itself, or by the chain rule through
+    // inverse dynamics (ID(q, q̇, FD(q, q̇, τ)) = τ, so ∂q̈/∂x = −M⁻¹ ∂ID/∂x at a = q̈, as
+    // Pinocchio's computeABADerivatives): whichever costs fewer operations.
+    let direct = {
+        let (g, qdd) = forward_dynamics_by(model, method);
+        let output = state_jacobians(&g, model, &qdd);
+        (
+            g,
+            output,
+            "forward-mode differentiation of the forward-dynamics expansion",
+        )
+    };
+    let chain = {
+        let (g, t, i) = fresh_graph(model);
+        let output = forward_dynamics_derivatives_by_chain_rule(&g, &t, &i, model, method);
+        (
+            g,
+            output,
+            "the chain rule through inverse dynamics, ∂q̈/∂x = −M⁻¹ ∂τ/∂x at q̈ \
+             (forward-mode derivatives of Newton–Euler, then tree-sparse LDLᵀ solves)",
+        )
+    };
+    let cost = |(g, output, _): &(Graph, Output, &str)| {
+        let c = g.op_count(&output.nodes());
+        c.mul + c.add + 10 * c.div + 10 * c.sqrt
+    };
+    let (graph, output, how) = if cost(&direct) <= cost(&chain) {
+        direct
+    } else {
+        chain
+    };
     Expanded {
-        graph: g,
+        graph,
         output,
         doc: format!(
             "Derivatives of forward dynamics: (∂q̈/∂q, ∂q̈/∂q̇), each nv × nv (row i: q̈_i), \
-             at (`q`, `v`, `tau`); ∂q̈/∂τ = M(q)⁻¹ (`mass_matrix_inverse`). By forward-mode \
-             differentiation of the forward-dynamics expansion (Pinocchio's \
-             `computeABADerivatives`). {TANGENT_CONVENTION}"
+             at (`q`, `v`, `tau`); ∂q̈/∂τ = M(q)⁻¹ (`mass_matrix_inverse`). By {how}, the \
+             cheaper of two ways for this mechanism (Pinocchio's `computeABADerivatives`). \
+             {TANGENT_CONVENTION}"
         ),
     }
+}
+
+/// (∂q̈/∂q, ∂q̈/∂q̇) = −M⁻¹ (∂τ/∂q, ∂τ/∂q̇), the derivatives of τ = ID(q, q̇, a) taken at a
+/// free `a` and evaluated at a = q̈ = FD(q, q̇, τ).
+fn forward_dynamics_derivatives_by_chain_rule(
+    g: &Graph,
+    t: &[JointTransform],
+    i: &[BodyInertia],
+    model: &Model,
+    method: ForwardMethod,
+) -> Output {
+    let nv = model.nv;
+    let qdd = forward_dynamics_on(g, t, i, model, method);
+    let (v, a) = (inputs(g, Array::V, nv), inputs(g, Array::A, nv));
+    let sweep_inputs = SweepInputs {
+        velocity: &v,
+        acceleration: &a,
+        gravity: true,
+        loads: has_loads(model),
+    };
+    let tau = joint_forces(g, model, t, i, &sweep_inputs);
+    let m = regrouped_mass_matrix(g, model, t, i);
+    let solved = |with: With| {
+        let rows = derivatives::jacobian(g, model, &tau, with);
+        let flat: Vec<Node> = rows.into_iter().flatten().collect();
+        let at_qdd = g.substitute(&flat, |r| {
+            (r.array == Array::A).then(|| qdd[r.index as usize])
+        });
+        let columns: Vec<Vec<Node>> = (0..nv)
+            .map(|c| {
+                let rhs = (0..nv).map(|r| g.neg(at_qdd[r * nv + c])).collect();
+                ldlt::solve(g, model, m.clone(), rhs)
+            })
+            .collect();
+        Output::Matrix(
+            (0..nv)
+                .map(|r| columns.iter().map(|column| column[r]).collect())
+                .collect(),
+        )
+    };
+    Output::Tuple(vec![
+        solved(With::Configuration),
+        solved(With::Array(Array::V)),
+    ])
 }
 
 /// Whether `forward_dynamics` uses the articulated-body algorithm for this model.
@@ -533,7 +606,7 @@ fn bias(model: &Model) -> Expanded {
 fn regrouped_mass_matrix(
     g: &Graph,
     model: &Model,
-    transforms: &[crate::expand::geometry::JointTransform],
+    transforms: &[JointTransform],
     inertias: &[BodyInertia],
 ) -> Vec<Vec<Node>> {
     let build = |i: &[BodyInertia]| crba::mass_matrix(g, model, transforms, i);
@@ -583,16 +656,28 @@ pub(crate) enum ForwardMethod {
 /// q̈ = FD(q, q̇, τ) by one method, in a fresh graph, over base inertial parameters.
 pub(crate) fn forward_dynamics_by(model: &Model, method: ForwardMethod) -> (Graph, Vec<Node>) {
     let (g, t, i) = fresh_graph(model);
+    let qdd = forward_dynamics_on(&g, &t, &i, model, method);
+    (g, qdd)
+}
+
+/// q̈ = FD(q, q̇, τ) by one method, over base inertial parameters, in `g`.
+fn forward_dynamics_on(
+    g: &Graph,
+    t: &[JointTransform],
+    i: &[BodyInertia],
+    model: &Model,
+    method: ForwardMethod,
+) -> Vec<Node> {
     let nv = model.nv;
     let loads = has_loads(model);
-    let v = inputs(&g, Array::V, nv);
-    let tau = inputs(&g, Array::Tau, nv);
-    let qdd = match method {
+    let v = inputs(g, Array::V, nv);
+    let tau = inputs(g, Array::Tau, nv);
+    match method {
         ForwardMethod::ArticulatedBody => {
-            let external = rnea::load_wrenches(&g, model, loads);
+            let external = rnea::load_wrenches(g, model, loads);
             let build =
-                |i: &[BodyInertia]| aba::forward_dynamics(&g, model, &t, i, &v, &tau, &external);
-            build(&base_parameters::regroup(&g, model, &t, &i, build))
+                |i: &[BodyInertia]| aba::forward_dynamics(g, model, t, i, &v, &tau, &external);
+            build(&base_parameters::regroup(g, model, t, i, build))
         }
         ForwardMethod::MassMatrixLdlt => {
             let zero = vec![g.zero(); nv];
@@ -602,13 +687,12 @@ pub(crate) fn forward_dynamics_by(model: &Model, method: ForwardMethod) -> (Grap
                 gravity: true,
                 loads,
             };
-            let bias = joint_forces(&g, model, &t, &i, &sweep_inputs);
+            let bias = joint_forces(g, model, t, i, &sweep_inputs);
             let rhs: Vec<Node> = tau.iter().zip(&bias).map(|(&t, &b)| g.sub(t, b)).collect();
-            let m = regrouped_mass_matrix(&g, model, &t, &i);
-            ldlt::solve(&g, model, m, rhs)
+            let m = regrouped_mass_matrix(g, model, t, i);
+            ldlt::solve(g, model, m, rhs)
         }
-    };
-    (g, qdd)
+    }
 }
 
 /// Forward dynamics by whichever method costs fewer operations for this model (a division

@@ -5,6 +5,9 @@
 //! (a ± b)˙ = ȧ ± ḃ, (a b)˙ = ȧ b + a ḃ, (a / b)˙ = (ȧ − (a/b) ḃ) / b, (−a)˙ = −ȧ,
 //! (sin a)˙ = cos a · ȧ, (cos a)˙ = −sin a · ȧ, (√a)˙ = ȧ / (2 √a). A constant tangent
 //! (a unit vector e_j gives the column ∂y/∂x_j) folds most terms away at construction.
+//!
+//! [`Graph::substitute`] rebuilds outputs with some inputs replaced by nodes: y(x) with
+//! x_k := z_k, e.g. a derivative taken at a free input `a` then evaluated at a computed q̈.
 
 use super::{Graph, InputRef, Node, Op};
 
@@ -34,6 +37,40 @@ impl Graph {
         outputs
             .iter()
             .map(|n| dot[n.index()].unwrap_or_else(|| self.zero()))
+            .collect()
+    }
+}
+
+impl Graph {
+    /// The outputs rebuilt with each input for which `replace` gives a node replaced by
+    /// that node (the others kept), through the same folding rules.
+    pub fn substitute(
+        &self,
+        outputs: &[Node],
+        replace: impl Fn(InputRef) -> Option<Node>,
+    ) -> Vec<Node> {
+        let live = self.live(outputs);
+        let ops = self.ops();
+        let mut new: Vec<Option<Node>> = vec![None; ops.len()];
+        for node in live.nodes() {
+            let n = |x: Node| new[x.index()].unwrap_or(x);
+            let rebuilt = match ops[node.index()] {
+                Op::Const(_) => node,
+                Op::Input(r) => replace(r).unwrap_or(node),
+                Op::Add(a, b) => self.add(n(a), n(b)),
+                Op::Sub(a, b) => self.sub(n(a), n(b)),
+                Op::Mul(a, b) => self.mul(n(a), n(b)),
+                Op::Div(a, b) => self.div(n(a), n(b)),
+                Op::Neg(a) => self.neg(n(a)),
+                Op::Sin(a) => self.sin(n(a)),
+                Op::Cos(a) => self.cos(n(a)),
+                Op::Sqrt(a) => self.sqrt(n(a)),
+            };
+            new[node.index()] = Some(rebuilt);
+        }
+        outputs
+            .iter()
+            .map(|x| new[x.index()].unwrap_or(*x))
             .collect()
     }
 }
@@ -90,5 +127,23 @@ mod tests {
         });
         assert_eq!(g.constant_value(d[0]), Some(0.0));
         assert_eq!(g.constant_value(d[1]), Some(0.0));
+    }
+
+    #[test]
+    fn substitution_replaces_inputs_and_keeps_the_rest() {
+        // y = q0 a0 + sin(a0); with a0 := q1², y = q0 q1² + sin(q1²).
+        let g = Graph::new();
+        let (q0, q1, a0) = (
+            g.input(Array::Q, 0),
+            g.input(Array::Q, 1),
+            g.input(Array::A, 0),
+        );
+        let y = g.add(g.mul(q0, a0), g.sin(a0));
+        let square = g.mul(q1, q1);
+        let z = g.substitute(&[y], |r| (r.array == Array::A).then_some(square))[0];
+        let x = [0.7, -1.3];
+        let value = g.eval(|r: crate::sym::InputRef| x[r.index as usize], &[z])[0];
+        let expected = 0.7 * 1.69 + 1.69_f64.sin();
+        assert!((value - expected).abs() < 1e-15, "{value} vs {expected}");
     }
 }
