@@ -704,7 +704,7 @@ fn check_kinematics<const NQ: usize, const NV: usize, const NB: usize>(
 
 /// The kinematics outputs timed, each alone: `<Name>/<output>/generated` (`compare.sh`
 /// pairs each with its Pinocchio call).
-const KINEMATICS: [&str; 11] = [
+const KINEMATICS: [&str; 14] = [
     "joint_placements",
     "joint_velocities",
     "joint_acceleration_biases",
@@ -716,6 +716,9 @@ const KINEMATICS: [&str; 11] = [
     "frame_jacobians",
     "frame_acceleration_biases",
     "centroidal_bias",
+    "inverse_dynamics_derivatives",
+    "forward_dynamics_derivatives",
+    "mass_matrix_inverse",
 ];
 
 /// The generated call of one kinematics output.
@@ -753,6 +756,15 @@ macro_rules! kinematics_call {
     ($m:ty, centroidal_bias, $s:ident) => {
         <$m>::centroidal_bias(&$s.q, &$s.v)
     };
+    ($m:ty, inverse_dynamics_derivatives, $s:ident) => {
+        <$m>::inverse_dynamics_derivatives(&$s.q, &$s.v, &$s.a)
+    };
+    ($m:ty, forward_dynamics_derivatives, $s:ident) => {
+        <$m>::forward_dynamics_derivatives(&$s.q, &$s.v, &$s.tau)
+    };
+    ($m:ty, mass_matrix_inverse, $s:ident) => {
+        <$m>::mass_matrix_inverse(&$s.q)
+    };
 }
 
 /// A kinematics mechanism's benchmarks: `bench_kinematics!(function, Type, states source,
@@ -784,6 +796,7 @@ macro_rules! bench_kinematics {
                 joint_placements, joint_velocities, joint_acceleration_biases, joint_jacobians,
                 center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix,
                 frame_placements, frame_jacobians, frame_acceleration_biases, centroidal_bias,
+                inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse,
             ]);
             group.bench_function("joint_velocities+joint_acceleration_biases/generated", |b| {
                 b.iter_custom(|iters| {

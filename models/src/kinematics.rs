@@ -15,6 +15,10 @@
 //! `computeJointJacobians`, `computeJointJacobiansTimeVariation`, `centerOfMass`,
 //! `jacobianCenterOfMass` and `ccrba`.
 //!
+//! They also generate the derivatives of the dynamics and M⁻¹, timed against Pinocchio's
+//! computeRNEADerivatives, computeABADerivatives and computeMinverse; the quadruped's
+//! derivatives are taken without its foot loads, as Pinocchio gets none.
+//!
 //! The frames are those Pinocchio's timing program gets from `benches/pinocchio/frames.json`:
 //! the URDF links hung on fixed joints (the UR5's `ee_link` and `tool0` and its root links,
 //! the Panda's flange, hand and fingers), and the quadruped's four feet.
@@ -28,7 +32,8 @@ mechanism! {
     gravity: [0.0, 0.0, -9.81];
     outputs: [joint_placements, joint_jacobians, joint_velocities, joint_acceleration_biases,
               center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix,
-              frame_placements, frame_jacobians, frame_acceleration_biases, centroidal_bias];
+              frame_placements, frame_jacobians, frame_acceleration_biases, centroidal_bias,
+              inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse];
     frame world: on ground;
     frame base_link: on ground;
     frame ee_link: on wrist_3_link at [0.0, 0.0823, 0.0] rotation rpy(0.0, 0.0, pi / 2.0);
@@ -42,7 +47,8 @@ mechanism! {
     gravity: [0.0, 0.0, -9.81];
     outputs: [joint_placements, joint_jacobians, joint_velocities, joint_acceleration_biases,
               center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix,
-              frame_placements, frame_jacobians, frame_acceleration_biases, centroidal_bias];
+              frame_placements, frame_jacobians, frame_acceleration_biases, centroidal_bias,
+              inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse];
     frame panda_link8: on panda_link7 at [0.0, 0.0, 0.107];
     frame panda_hand: on panda_link7 at [0.0, 0.0, 0.107] rotation rpy(0.0, 0.0, -pi / 4.0);
     frame panda_leftfinger: on panda_link7 at [0.0, 0.0, 0.1654] rotation rpy(0.0, 0.0, -pi / 4.0);
@@ -56,7 +62,8 @@ mechanism! {
     gravity: [0.0, 0.0, -9.81];
     outputs: [joint_placements, joint_jacobians, joint_velocities, joint_acceleration_biases,
               center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix,
-              frame_placements, frame_jacobians, frame_acceleration_biases, centroidal_bias];
+              frame_placements, frame_jacobians, frame_acceleration_biases, centroidal_bias,
+              inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse];
 
     /// The torso, its frame at the mass centre along its principal axes.
     body torso { mass: 3.575, inertia: diag([0.017528444, 0.129944698, 0.143418825]) }

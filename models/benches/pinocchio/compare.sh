@@ -34,7 +34,9 @@
 # centroidal_momentum_matrix; forwardKinematics + updateFramePlacements ~ frame_placements;
 # computeJointJacobians + getFrameJacobian per frame ~ frame_jacobians;
 # forwardKinematics(q, v, 0) + getFrameClassicalAcceleration per frame ~
-# frame_acceleration_biases; dccrba ~ centroidal_bias. The frames are those listed in
+# frame_acceleration_biases; dccrba ~ centroidal_bias; computeRNEADerivatives ~
+# inverse_dynamics_derivatives; computeABADerivatives ~ forward_dynamics_derivatives;
+# computeMinverse ~ mass_matrix_inverse. The frames are those listed in
 # frames.json: the arms' URDF links on fixed joints (every BODY frame whose parent is a
 # fixed joint), the quadruped's four feet. Timings of a busy machine are noisy: the load average is printed with each
 # table. --quick shortens both sides' measurements (for trying the script, not for
@@ -89,6 +91,7 @@ KIN_OUTPUTS='joint_placements|joint_velocities|joint_acceleration_biases|joint_j
 KIN_OUTPUTS+='|joint_velocities\+joint_acceleration_biases|joint_jacobians\+joint_acceleration_biases'
 KIN_OUTPUTS+='|center_of_mass|center_of_mass_jacobian|centroidal_momentum_matrix'
 KIN_OUTPUTS+='|frame_placements|frame_jacobians|frame_acceleration_biases|centroidal_bias'
+KIN_OUTPUTS+='|inverse_dynamics_derivatives|forward_dynamics_derivatives|mass_matrix_inverse'
 
 STEP="starting"
 fail() { echo "compare.sh: FAILED while $STEP${1:+: $1}" >&2; exit 1; }
@@ -261,7 +264,12 @@ KIN_ROWS = [("forwardKinematics(q)", "forwardKinematics_q", "joint_placements", 
              True, True),
             ("forwardKinematics(q, v, 0) + getFrameClassicalAcceleration × N",
              "frameClassicalAccelerations", "frame_acceleration_biases", True, True),
-            ("dccrba", "dccrba", "centroidal_bias", True, False)]
+            ("dccrba", "dccrba", "centroidal_bias", True, False),
+            ("computeRNEADerivatives", "computeRNEADerivatives", "inverse_dynamics_derivatives",
+             True, False),
+            ("computeABADerivatives", "computeABADerivatives", "forward_dynamics_derivatives",
+             True, False),
+            ("computeMinverse", "computeMinverse", "mass_matrix_inverse", True, False)]
 
 pin, pin_states, frames, header = {}, {}, {}, ""
 for line in open(os.path.join(build, "pinocchio.tsv")):
@@ -365,7 +373,7 @@ out.append("Pinocchio's LOCAL and WORLD conventions. Quadruped: foot loads zero,
 if kin_rows:
     which = [m for m in models if m in KINEMATICS]
     out.append("")
-    out.append("### Kinematics")
+    out.append("### Kinematics and derivatives")
     out.append("")
     out.append("1-minute load average when each side of the kinematics started (Pinocchio/generated): "
                f"{load_list('kinematics', which)}.")
@@ -382,7 +390,9 @@ if kin_rows:
     out.append("ours J and J̇v; ccrba also gives h_g = A_g v, ours A_G alone. computeJointJacobians gives one 6 × nv")
     out.append("matrix (world frame at its origin) from which getJointJacobian shapes each joint's: ours gives every")
     out.append("joint's, as the row with getJointJacobian for each joint does. Frames: every BODY frame whose parent")
-    out.append("is a fixed joint in the URDF, and the quadruped's feet (frames.json).")
+    out.append("is a fixed joint in the URDF, and the quadruped's feet (frames.json). computeRNEADerivatives")
+    out.append("also gives ∂τ/∂a = M, computeABADerivatives M⁻¹ (ours: mass_matrix_inverse); computeMinverse")
+    out.append("fills the upper triangle, ours the whole matrix.")
 text = "\n".join(out)
 print(text)
 open(os.path.join(build, "comparison.md"), "w").write(text + "\n")

@@ -21,12 +21,13 @@
 // Dynamics: rnea, crba and aba (both in Pinocchio's LOCAL convention, the default, and in
 // WORLD; compare.sh compares against the faster one), nonLinearEffects,
 // computeGeneralizedGravity, computeCoriolisMatrix.
-// Kinematics: forwardKinematics(q), forwardKinematics(q, v, a), computeJointJacobians,
-// computeJointJacobiansTimeVariation, centerOfMass(q), jacobianCenterOfMass(q),
+// Kinematics: forwardKinematics(q), forwardKinematics(q, v, a), computeJointJacobians (alone
+// and with getJointJacobian for every joint), computeJointJacobiansTimeVariation, centerOfMass(q), jacobianCenterOfMass(q),
 // ccrba(q, v), dccrba(q, v), and, for a model with operational frames, three frame
 // algorithms: forwardKinematics(q) + updateFramePlacements; computeJointJacobians +
 // getFrameJacobian(LOCAL_WORLD_ALIGNED) for each frame; forwardKinematics(q, v, 0) +
-// getFrameClassicalAcceleration(LOCAL_WORLD_ALIGNED) for each frame.
+// getFrameClassicalAcceleration(LOCAL_WORLD_ALIGNED) for each frame. Derivatives (same
+// group): computeRNEADerivatives(q, v, a), computeABADerivatives(q, v, tau), computeMinverse.
 //
 // Frames: --frames names a file (frames.json beside this program) that lists, per model
 // name, the URDF link each joint moves and the links hung on fixed joints. The frame
@@ -44,6 +45,7 @@
 //   time     <name> <algorithm> <median ns> <min ns> <max ns> <calls per repetition>
 
 #include <pinocchio/algorithm/aba.hpp>
+#include <pinocchio/algorithm/aba-derivatives.hpp>
 #include <pinocchio/algorithm/center-of-mass.hpp>
 #include <pinocchio/algorithm/centroidal.hpp>
 #include <pinocchio/algorithm/crba.hpp>
@@ -52,6 +54,7 @@
 #include <pinocchio/algorithm/jacobian.hpp>
 #include <pinocchio/algorithm/kinematics.hpp>
 #include <pinocchio/algorithm/rnea.hpp>
+#include <pinocchio/algorithm/rnea-derivatives.hpp>
 #include <pinocchio/math.hpp>
 #include <pinocchio/multibody.hpp>
 
@@ -438,6 +441,23 @@ void time_kinematics(const std::string& name, const Model& model, const States& 
            escape(&pinocchio::dccrba(model, data, s.q[k], s.v[k]));
            escape(&data.Ag);
            escape(&data.hg);
+         }, n, settings));
+
+  // The derivatives of the dynamics, and M⁻¹.
+  MatrixXd dtau_dq = MatrixXd::Zero(model.nv, model.nv), dtau_dv = dtau_dq, dtau_da = dtau_dq;
+  report(name, "computeRNEADerivatives", time_calls([&](std::size_t k) {
+           pinocchio::computeRNEADerivatives(model, data, s.q[k], s.v[k], s.a[k], dtau_dq, dtau_dv, dtau_da);
+           escape(&dtau_dq);
+           escape(&dtau_dv);
+         }, n, settings));
+  MatrixXd ddq_dq = MatrixXd::Zero(model.nv, model.nv), ddq_dv = ddq_dq, ddq_dtau = ddq_dq;
+  report(name, "computeABADerivatives", time_calls([&](std::size_t k) {
+           pinocchio::computeABADerivatives(model, data, s.q[k], s.v[k], s.tau[k], ddq_dq, ddq_dv, ddq_dtau);
+           escape(&ddq_dq);
+           escape(&ddq_dv);
+         }, n, settings));
+  report(name, "computeMinverse", time_calls([&](std::size_t k) {
+           escape(&pinocchio::computeMinverse(model, data, s.q[k]));
          }, n, settings));
 
   // The frame algorithms, on the model with its URDF's frames.
