@@ -368,8 +368,16 @@ pub struct MotionInWorld {
 }
 
 /// Every body's classical acceleration [a_P; α] and ω in world axes at velocity `velocity`
-/// and acceleration `acceleration`, without gravity: the Newton–Euler forward sweep
-/// ([`rnea::motions`], body frames) turned into the world. At q̈ = 0, [a_P; α] is J̇ q̇.
+/// and acceleration `acceleration`, without gravity, by the rigid-body acceleration field
+/// from the root, in world axes (a = R_i s the joint axis, r = p_i − p_λ):
+///
+/// ```text
+/// revolute:   ω_i = ω_λ + a q̇,   α_i = α_λ + ω_λ × a q̇ + a q̈,   a_i = a_λ + α_λ × r + ω_λ × (ω_λ × r)
+/// prismatic:  ω_i = ω_λ,         α_i = α_λ,   a_i = a_λ + α_λ × r + ω_λ × (ω_λ × r) + 2 ω_λ × a q̇ + a q̈
+/// free:       ω = R ω_b,   α = R ω̇_b,   a_P = R (v̇_b + ω_b × v_b)   (v = [v_b; ω_b] in the body frame)
+/// ```
+///
+/// At q̈ = 0, [a_P; α] is J̇ q̇.
 pub fn motions_in_world(
     g: &Graph,
     model: &Model,
@@ -377,23 +385,60 @@ pub fn motions_in_world(
     velocity: &[Node],
     acceleration: &[Node],
 ) -> Vec<MotionInWorld> {
-    let inputs = SweepInputs {
-        velocity,
-        acceleration,
-        gravity: false,
-        loads: false,
-    };
-    let motions = rnea::motions(g, model, transforms, &inputs);
     let poses = body_poses(g, model, transforms);
-    motions
-        .iter()
-        .zip(&poses)
-        .map(|(motion, pose)| MotionInWorld {
-            accel: pose.rotation_in_world.mul_vec(g, motion.accel),
-            alpha: pose.rotation_in_world.mul_vec(g, motion.alpha),
-            omega: pose.rotation_in_world.mul_vec(g, motion.omega),
-        })
-        .collect()
+    let mut out: Vec<MotionInWorld> = Vec::with_capacity(model.bodies.len());
+    for (i, body) in model.bodies.iter().enumerate() {
+        let pose = &poses[i];
+        let zero = Vec3::zero(g);
+        let parent = body.parent.map(|p| (out[p], poses[p].origin_in_world));
+        // The motion of the parent's point that coincides with P_i.
+        let (mut accel, mut alpha, mut omega) = match parent {
+            None => (zero, zero, zero),
+            Some((m, origin)) => {
+                let r = pose.origin_in_world.sub(g, origin);
+                let accel = m
+                    .accel
+                    .add(g, m.alpha.cross(g, r))
+                    .add(g, m.omega.cross(g, m.omega.cross(g, r)));
+                (accel, m.alpha, m.omega)
+            }
+        };
+        let k = body.joint.idx_v;
+        match body.joint.kind {
+            JointKind::Revolute { axis_in_joint } => {
+                let axis = axis_in_world(g, pose, axis_in_joint);
+                let spin = axis.scale(g, velocity[k]);
+                alpha = alpha
+                    .add(g, omega.cross(g, spin))
+                    .add(g, axis.scale(g, acceleration[k]));
+                omega = omega.add(g, spin);
+            }
+            JointKind::Prismatic { axis_in_joint } => {
+                let axis = axis_in_world(g, pose, axis_in_joint);
+                let slide = axis.scale(g, velocity[k]);
+                let coriolis = omega.cross(g, slide);
+                accel = accel
+                    .add(g, coriolis.add(g, coriolis))
+                    .add(g, axis.scale(g, acceleration[k]));
+            }
+            JointKind::Free => {
+                let own = |x: &[Node], offset: usize| {
+                    Vec3::new(x[k + offset], x[k + offset + 1], x[k + offset + 2])
+                };
+                let (v_body, omega_body) = (own(velocity, 0), own(velocity, 3));
+                let linear = own(acceleration, 0).add(g, omega_body.cross(g, v_body));
+                accel = accel.add(g, pose.rotation_in_world.mul_vec(g, linear));
+                alpha = alpha.add(g, pose.rotation_in_world.mul_vec(g, own(acceleration, 3)));
+                omega = omega.add(g, pose.rotation_in_world.mul_vec(g, omega_body));
+            }
+        }
+        out.push(MotionInWorld {
+            accel,
+            alpha,
+            omega,
+        });
+    }
+    out
 }
 
 /// Ȧ_G q̇, the rate of the centroidal momentum h_G = A_G q̇ at q̈ = 0 (world axes, angular
