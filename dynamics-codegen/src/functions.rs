@@ -542,19 +542,7 @@ fn forward_dynamics_prefers_aba(model: &Model) -> bool {
 
 fn mass_matrix_inverse(model: &Model) -> Expanded {
     let (g, t, i) = fresh_graph(model);
-    let nv = model.nv;
-    // Column k of M⁻¹ solves M x = e_k; the factorization's nodes are shared by every column.
-    let columns: Vec<Vec<Node>> = (0..nv)
-        .map(|k| {
-            let unit = (0..nv)
-                .map(|r| if r == k { g.one() } else { g.zero() })
-                .collect();
-            ldlt::solve(&g, model, regrouped_mass_matrix(&g, model, &t, &i), unit)
-        })
-        .collect();
-    let rows = (0..nv)
-        .map(|r| columns.iter().map(|column| column[r]).collect())
-        .collect();
+    let rows = ldlt::inverse(&g, model, regrouped_mass_matrix(&g, model, &t, &i));
     Expanded {
         graph: g,
         output: Output::Matrix(rows),

@@ -10,6 +10,8 @@
 //! solve Lᵀ z = y, z ← D⁻¹ z, solve L x = z.
 //! ```
 //!
+//! M⁻¹ = L⁻¹ D⁻¹ L⁻ᵀ comes from the same factorization ([`inverse`]).
+//!
 //! λ(k) is the coordinate k descends from: the previous coordinate of the same free joint,
 //! or the last coordinate of the parent body's joint. Each pivot is inverted once.
 
@@ -45,16 +47,11 @@ pub fn solve_dense(g: &Graph, m: Vec<Vec<Node>>, y: Vec<Node>) -> Vec<Node> {
     solve_with_parents(g, &parents, m, y)
 }
 
-/// Solves M x = y where M is nonzero only between a coordinate and its ancestors in
-/// `parents`.
-fn solve_with_parents(
-    g: &Graph,
-    parents: &[Option<usize>],
-    mut m: Vec<Vec<Node>>,
-    mut y: Vec<Node>,
-) -> Vec<Node> {
+/// The factorization M = Lᵀ D L in place: `m[k][i]` for i an ancestor of k becomes L_ki,
+/// and the returned vector holds 1 / D_k.
+fn factor(g: &Graph, parents: &[Option<usize>], m: &mut [Vec<Node>]) -> Vec<Node> {
     let ancestors = |k: usize| std::iter::successors(parents[k], |&i| parents[i]);
-    let n = y.len();
+    let n = m.len();
     let mut inverse_pivot = vec![g.zero(); n];
     for k in (0..n).rev() {
         inverse_pivot[k] = g.div(g.one(), m[k][k]);
@@ -66,6 +63,20 @@ fn solve_with_parents(
             m[k][i] = a;
         }
     }
+    inverse_pivot
+}
+
+/// Solves M x = y where M is nonzero only between a coordinate and its ancestors in
+/// `parents`.
+fn solve_with_parents(
+    g: &Graph,
+    parents: &[Option<usize>],
+    mut m: Vec<Vec<Node>>,
+    mut y: Vec<Node>,
+) -> Vec<Node> {
+    let ancestors = |k: usize| std::iter::successors(parents[k], |&i| parents[i]);
+    let n = y.len();
+    let inverse_pivot = factor(g, parents, &mut m);
     for i in (0..n).rev() {
         for j in ancestors(i) {
             y[j] = g.sub(y[j], g.mul(m[i][j], y[i]));
@@ -80,4 +91,41 @@ fn solve_with_parents(
         }
     }
     y
+}
+
+/// M⁻¹ from the same factorization, one triangle computed and mirrored:
+/// M⁻¹ = Wᵀ D⁻¹ W with W = L⁻ᵀ, whose column j is nonzero only on j and its ancestors, so
+/// (M⁻¹)_ij = Σ_k W_ki W_kj / D_k over the common ancestors k of i and j (themselves
+/// included).
+pub fn inverse(g: &Graph, model: &Model, mut m: Vec<Vec<Node>>) -> Vec<Vec<Node>> {
+    let parents = coordinate_parents(model);
+    let with_ancestors =
+        |k: usize| std::iter::once(k).chain(std::iter::successors(parents[k], |&i| parents[i]));
+    let n = m.len();
+    let inverse_pivot = factor(g, &parents, &mut m);
+    // w[k][j] = W_kj, solving Lᵀ w = e_j from j towards the root.
+    let mut w = vec![vec![g.zero(); n]; n];
+    for j in 0..n {
+        w[j][j] = g.one();
+        let chain: Vec<usize> = with_ancestors(j).collect();
+        for &i in &chain {
+            for a in with_ancestors(i).skip(1) {
+                w[a][j] = g.sub(w[a][j], g.mul(m[i][a], w[i][j]));
+            }
+        }
+    }
+    let mut out = vec![vec![g.zero(); n]; n];
+    for i in 0..n {
+        let own: Vec<usize> = with_ancestors(i).collect();
+        for j in i..n {
+            let terms: Vec<Node> = with_ancestors(j)
+                .filter(|k| own.contains(k))
+                .map(|k| g.mul(g.mul(w[k][i], inverse_pivot[k]), w[k][j]))
+                .collect();
+            let entry = g.sum(&terms);
+            out[i][j] = entry;
+            out[j][i] = entry;
+        }
+    }
+    out
 }
