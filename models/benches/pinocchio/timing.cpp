@@ -430,6 +430,20 @@ void time_kinematics(const std::string& name, const Model& model, const States& 
            escape(&pinocchio::computeJointJacobiansTimeVariation(model, data, s.q[k], s.v[k]));
            escape(&data.J);
          }, n, settings));
+  // What ours gives: every joint's Jacobian and its J̇ v (LOCAL_WORLD_ALIGNED), from
+  // getJointJacobian and getJointJacobianTimeVariation for each joint.
+  MatrixXd joint_rate = MatrixXd::Zero(6, model.nv);
+  std::vector<VectorXd> joint_rates_v(model.njoints, VectorXd::Zero(6));
+  report(name, "computeJointJacobiansTimeVariation_perJoint", time_calls([&](std::size_t k) {
+           pinocchio::computeJointJacobiansTimeVariation(model, data, s.q[k], s.v[k]);
+           for (pinocchio::JointIndex j = 1; j < pinocchio::JointIndex(model.njoints); ++j) {
+             pinocchio::getJointJacobian(model, data, j, pinocchio::LOCAL_WORLD_ALIGNED, joint_jacobians[j]);
+             pinocchio::getJointJacobianTimeVariation(model, data, j, pinocchio::LOCAL_WORLD_ALIGNED, joint_rate);
+             joint_rates_v[j].noalias() = joint_rate * s.v[k];
+           }
+           escape(joint_jacobians.data());
+           escape(joint_rates_v.data());
+         }, n, settings));
   report(name, "centerOfMass", time_calls([&](std::size_t k) { escape(&pinocchio::centerOfMass(model, data, s.q[k])); }, n, settings));
   report(name, "jacobianCenterOfMass",
          time_calls([&](std::size_t k) { escape(&pinocchio::jacobianCenterOfMass(model, data, s.q[k])); }, n, settings));
