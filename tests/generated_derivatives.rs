@@ -72,20 +72,8 @@ struct Sample {
     minv: Vec<Vec<f64>>,
 }
 
-#[derive(Deserialize)]
-struct Samples {
-    samples: Vec<Sample>,
-}
-
 fn samples(name: &str) -> Vec<Sample> {
-    let path = format!(
-        "{}/data/pinocchio_ext/{name}_derivatives.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    let file: Samples = serde_json::from_str(&text).unwrap_or_else(|e| panic!("{path}: {e}"));
-    assert_eq!(file.samples.len(), 20, "{path}");
-    file.samples
+    dynamics_tests::pinocchio_ext_samples(name, "derivatives")
 }
 
 /// Asserts every entry within `tolerance · (1 + max |expected|)`.

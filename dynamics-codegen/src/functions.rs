@@ -47,7 +47,7 @@ use crate::expand::{
 use crate::ir::{Arg, Function, FunctionSpec, Output};
 use crate::model::Model;
 use crate::passes::base_parameters;
-use crate::sym::{Array, Graph, Node};
+use crate::sym::{Array, Graph, Node, Vec3};
 
 /// One function of the catalog.
 pub(crate) struct Entry {
@@ -843,12 +843,7 @@ fn joint_jacobians(model: &Model) -> Expanded {
 fn joint_velocities(model: &Model) -> Expanded {
     let (g, t, _) = fresh_graph(model);
     let v = inputs(&g, Array::V, model.nv);
-    let velocities = kinematics::body_velocities(&g, model, &t, &v)
-        .into_iter()
-        .map(|(linear, angular)| {
-            Output::Vector(linear.0.iter().chain(&angular.0).copied().collect())
-        })
-        .collect();
+    let velocities = six_vectors(kinematics::body_velocities(&g, model, &t, &v));
     Expanded {
         graph: g,
         output: Output::Stack(velocities),
@@ -863,10 +858,11 @@ fn joint_acceleration_biases(model: &Model) -> Expanded {
     let (g, t, _) = fresh_graph(model);
     let v = inputs(&g, Array::V, model.nv);
     let zero = vec![g.zero(); model.nv];
-    let biases = kinematics::motions_in_world(&g, model, &t, &v, &zero)
-        .into_iter()
-        .map(|m| Output::Vector(m.accel.0.iter().chain(&m.alpha.0).copied().collect()))
-        .collect();
+    let biases = six_vectors(
+        kinematics::motions_in_world(&g, model, &t, &v, &zero)
+            .into_iter()
+            .map(|m| (m.accel, m.alpha)),
+    );
     Expanded {
         graph: g,
         output: Output::Stack(biases),
@@ -904,6 +900,16 @@ fn centroidal_bias(model: &Model) -> Expanded {
               `computeCentroidalMomentumTimeVariation`'s dhg at a = 0)."
             .to_owned(),
     }
+}
+
+/// Six-vectors [linear; angular], one output vector each, stacked.
+fn six_vectors(vectors: impl IntoIterator<Item = (Vec3, Vec3)>) -> Vec<Output> {
+    vectors
+        .into_iter()
+        .map(|(linear, angular)| {
+            Output::Vector(linear.0.iter().chain(&angular.0).copied().collect())
+        })
+        .collect()
 }
 
 /// (R, p) of a pose as an output: a 3 × 3 matrix of rows and a 3-vector.
@@ -966,12 +972,7 @@ fn frame_jacobians(model: &Model, axes: JacobianAxes) -> Expanded {
 fn frame_velocities(model: &Model) -> Expanded {
     let (g, t, _) = fresh_graph(model);
     let v = inputs(&g, Array::V, model.nv);
-    let velocities = frames::frame_velocities(&g, model, &t, &v)
-        .into_iter()
-        .map(|(linear, angular)| {
-            Output::Vector(linear.0.iter().chain(&angular.0).copied().collect())
-        })
-        .collect();
+    let velocities = six_vectors(frames::frame_velocities(&g, model, &t, &v));
     Expanded {
         graph: g,
         output: Output::Stack(velocities),
@@ -985,12 +986,7 @@ fn frame_velocities(model: &Model) -> Expanded {
 fn frame_acceleration_biases(model: &Model) -> Expanded {
     let (g, t, _) = fresh_graph(model);
     let v = inputs(&g, Array::V, model.nv);
-    let biases = frames::frame_acceleration_biases(&g, model, &t, &v)
-        .into_iter()
-        .map(|(linear, angular)| {
-            Output::Vector(linear.0.iter().chain(&angular.0).copied().collect())
-        })
-        .collect();
+    let biases = six_vectors(frames::frame_acceleration_biases(&g, model, &t, &v));
     Expanded {
         graph: g,
         output: Output::Stack(biases),

@@ -10,6 +10,24 @@ use serde::Deserialize;
 
 mod split_mix;
 
+/// The 20 samples of Pinocchio's values in `tests/data/pinocchio_ext/<name>_<kind>.json`
+/// (`kind`: `kinematics`, `frames`, `derivatives`), each read as an `S`. Panics with the
+/// path on a missing or malformed file (a test's data, not user input).
+pub fn pinocchio_ext_samples<S: serde::de::DeserializeOwned>(name: &str, kind: &str) -> Vec<S> {
+    #[derive(Deserialize)]
+    struct File<S> {
+        samples: Vec<S>,
+    }
+    let path = format!(
+        "{}/data/pinocchio_ext/{name}_{kind}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let file: File<S> = serde_json::from_str(&text).unwrap_or_else(|e| panic!("{path}: {e}"));
+    assert_eq!(file.samples.len(), 20, "{path}");
+    file.samples
+}
+
 /// `1 + max |x|` over the values: the scale of the anchors' tolerance
 /// `1e-11 · (1 + max |value|)`.
 pub fn tolerance_scale<'a>(values: impl IntoIterator<Item = &'a f64>) -> f64 {

@@ -49,6 +49,12 @@ fn frame_pose(g: &Graph, body_poses: &[Pose], frame: &Frame) -> Pose {
     }
 }
 
+/// ρ = R_b r_f: the frame's origin relative to its body's, in world axes.
+fn lever_in_world(g: &Graph, body: &Pose, frame: &Frame) -> Vec3 {
+    body.rotation_in_world
+        .mul_vec(g, vector(g, &frame.origin_in_body))
+}
+
 /// The pose of every frame of the model in the world.
 pub fn frame_poses(g: &Graph, model: &Model, transforms: &[JointTransform]) -> Vec<Pose> {
     let poses = kinematics::body_poses(g, model, transforms);
@@ -117,9 +123,7 @@ pub fn frame_velocities(
             None => (Vec3::zero(g), Vec3::zero(g)),
             Some(b) => {
                 let (linear, angular) = velocities[b];
-                let lever = poses[b]
-                    .rotation_in_world
-                    .mul_vec(g, vector(g, &frame.origin_in_body));
+                let lever = lever_in_world(g, &poses[b], frame);
                 (linear.add(g, angular.cross(g, lever)), angular)
             }
         })
@@ -147,9 +151,7 @@ pub fn frame_acceleration_biases(
                     alpha,
                     omega,
                 } = motions[b];
-                let lever = poses[b]
-                    .rotation_in_world
-                    .mul_vec(g, vector(g, &frame.origin_in_body));
+                let lever = lever_in_world(g, &poses[b], frame);
                 let accel = accel
                     .add(g, alpha.cross(g, lever))
                     .add(g, omega.cross(g, omega.cross(g, lever)));
