@@ -38,11 +38,12 @@ impl Parse for Mechanism {
         let mut given: Vec<(String, Span)> = Vec::new();
         while !input.is_empty() {
             let docs = parse_docs(input)?;
+            let item_start = input.cursor();
             if input.peek(Token![pub]) || input.peek(Token![struct]) {
                 let visibility: syn::Visibility = input.parse()?;
                 input.parse::<Token![struct]>()?;
                 let name: Ident = input.parse()?;
-                input.parse::<Token![;]>()?;
+                semicolon(input, item_start)?;
                 if let Some((_, _, first)) = &header {
                     let mut error =
                         syn::Error::new(name.span(), "the mechanism's type is declared twice");
@@ -142,7 +143,7 @@ impl Parse for Mechanism {
                             ));
                         }
                     }
-                    input.parse::<Token![;]>()?;
+                    semicolon(input, item_start)?;
                 }
             }
         }
@@ -774,6 +775,7 @@ fn with_hint(error: syn::Error, hint: &str) -> syn::Error {
 
 /// `joint name: kind(parent -> child) { ... }` or `... ;`.
 fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
+    let start = input.cursor();
     let name = parse_name(input)?;
     input.parse::<Token![:]>()?;
     let kind_ident: Ident = input.parse()?;
@@ -810,8 +812,8 @@ fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
         damping: None,
         driven: None,
     };
-    if input.peek(Token![;]) {
-        input.parse::<Token![;]>()?;
+    if !input.peek(syn::token::Brace) {
+        semicolon(input, start)?;
         return Ok(joint);
     }
     parse_fields(input, |field, content| {
@@ -840,6 +842,7 @@ fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
 
 /// `load name: force|couple|wrench on body [at [x, y, z]];`.
 fn parse_load(input: ParseStream, docs: Vec<String>) -> syn::Result<Load> {
+    let start = input.cursor();
     let name = parse_name(input)?;
     input.parse::<Token![:]>()?;
     let kind_ident: Ident = input.parse()?;
@@ -860,7 +863,7 @@ fn parse_load(input: ParseStream, docs: Vec<String>) -> syn::Result<Load> {
     }
     let body = parse_name(input)?;
     let mut at = None;
-    if input.peek(Ident) {
+    if input.peek(Ident) && !next_is_new_item(input) {
         let at_kw: Ident = input.parse()?;
         if at_kw != "at" {
             return Err(syn::Error::new(
@@ -870,7 +873,7 @@ fn parse_load(input: ParseStream, docs: Vec<String>) -> syn::Result<Load> {
         }
         at = Some(parse_vector(input)?);
     }
-    input.parse::<Token![;]>()?;
+    semicolon(input, start)?;
     Ok(Load {
         docs,
         name,
@@ -880,8 +883,45 @@ fn parse_load(input: ParseStream, docs: Vec<String>) -> syn::Result<Load> {
     })
 }
 
+/// Whether the next tokens start another item (a doc comment, the type, a setting
+/// `name:` or an item keyword followed by a name): what follows an item whose `;` is missing.
+fn next_is_new_item(input: ParseStream) -> bool {
+    if input.peek(Token![#]) || input.peek(Token![pub]) || input.peek(Token![struct]) {
+        return true;
+    }
+    let fork = input.fork();
+    match fork.parse::<Ident>() {
+        Ok(word) => {
+            fork.peek(Token![:]) || (ITEMS.contains(&word.to_string().as_str()) && fork.peek(Ident))
+        }
+        Err(_) => false,
+    }
+}
+
+/// The `;` that ends an item; its absence is reported at the item's last token (the end
+/// of the macro's input would otherwise underline the whole invocation).
+fn semicolon(input: ParseStream, item_start: syn::buffer::Cursor) -> syn::Result<()> {
+    if input.peek(Token![;]) {
+        input.parse::<Token![;]>()?;
+        return Ok(());
+    }
+    let (mut cursor, end, mut last) = (item_start, input.cursor(), None);
+    while cursor != end {
+        let Some((token, next)) = cursor.token_tree() else {
+            break;
+        };
+        last = Some(token.span());
+        cursor = next;
+    }
+    Err(syn::Error::new(
+        last.unwrap_or_else(|| input.span()),
+        "expected `;` after this",
+    ))
+}
+
 /// `frame name: on body [at [x, y, z]] [rotation ..];`.
 fn parse_frame(input: ParseStream, docs: Vec<String>) -> syn::Result<Frame> {
+    let start = input.cursor();
     let name = parse_name(input)?;
     input.parse::<Token![:]>()?;
     let on: Ident = input.parse()?;
@@ -893,7 +933,7 @@ fn parse_frame(input: ParseStream, docs: Vec<String>) -> syn::Result<Frame> {
     }
     let body = parse_name(input)?;
     let (mut at, mut rotation) = (None, None);
-    while !input.peek(Token![;]) {
+    while input.peek(Ident) && !next_is_new_item(input) {
         let word: Ident = input.parse().map_err(|e| {
             syn::Error::new(e.span(), "expected `at [x, y, z]`, `rotation ...` or `;`")
         })?;
@@ -914,7 +954,7 @@ fn parse_frame(input: ParseStream, docs: Vec<String>) -> syn::Result<Frame> {
             }
         }
     }
-    input.parse::<Token![;]>()?;
+    semicolon(input, start)?;
     Ok(Frame {
         docs,
         name,
