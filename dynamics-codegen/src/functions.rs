@@ -438,16 +438,11 @@ fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
 }
 
 fn forward_dynamics_derivatives(model: &Model) -> Expanded {
-    let method = if forward_dynamics_prefers_aba(model) {
-        ForwardMethod::ArticulatedBody
-    } else {
-        ForwardMethod::MassMatrixLdlt
-    };
     // Differentiating the forward-dynamics expansion itself, or by the chain rule through
     // inverse dynamics (ID(q, q̇, FD(q, q̇, τ)) = τ, so ∂q̈/∂x = −M⁻¹ ∂ID/∂x at a = q̈, as
     // Pinocchio's computeABADerivatives): whichever costs fewer operations.
+    let (g, qdd, method) = cheapest_forward_dynamics(model);
     let direct = {
-        let (g, qdd) = forward_dynamics_by(model, method);
         let output = state_jacobians(&g, model, &qdd);
         (
             g,
@@ -465,10 +460,7 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
              (forward-mode derivatives of Newton–Euler, then tree-sparse LDLᵀ solves)",
         )
     };
-    let cost = |(g, output, _): &(Graph, Output, &str)| {
-        let c = g.op_count(&output.nodes());
-        c.mul + c.add + 10 * c.div + 10 * c.sqrt
-    };
+    let cost = |(g, output, _): &(Graph, Output, &str)| weighted_cost(g, &output.nodes());
     let (graph, output, how) = if cost(&direct) <= cost(&chain) {
         direct
     } else {
@@ -528,16 +520,6 @@ fn forward_dynamics_derivatives_by_chain_rule(
         solved(With::Configuration),
         solved(With::Array(Array::V)),
     ])
-}
-
-/// Whether `forward_dynamics` uses the articulated-body algorithm for this model.
-fn forward_dynamics_prefers_aba(model: &Model) -> bool {
-    let cost = |(g, qdd): &(Graph, Vec<Node>)| {
-        let c = g.op_count(qdd);
-        c.mul + c.add + 10 * c.div + 10 * c.sqrt
-    };
-    cost(&forward_dynamics_by(model, ForwardMethod::ArticulatedBody))
-        <= cost(&forward_dynamics_by(model, ForwardMethod::MassMatrixLdlt))
 }
 
 fn mass_matrix_inverse(model: &Model) -> Expanded {
@@ -685,24 +667,35 @@ fn forward_dynamics_on(
 
 /// Forward dynamics by whichever method costs fewer operations for this model (a division
 /// weighted as ten operations), with the method named in the docs.
-fn forward_dynamics(model: &Model) -> Expanded {
-    let cost = |(g, qdd): &(Graph, Vec<Node>)| {
-        let c = g.op_count(qdd);
-        c.mul + c.add + 10 * c.div + 10 * c.sqrt
-    };
-    let aba = forward_dynamics_by(model, ForwardMethod::ArticulatedBody);
-    let ldlt = forward_dynamics_by(model, ForwardMethod::MassMatrixLdlt);
-    let ((graph, qdd), method) = if cost(&aba) <= cost(&ldlt) {
-        (
-            aba,
-            "the articulated-body algorithm (fewer operations than LDLᵀ of M here)",
-        )
+/// The weight of a function's operations when two expansions are compared: a division or a
+/// square root counts as ten products or sums.
+fn weighted_cost(g: &Graph, outputs: &[Node]) -> usize {
+    let c = g.op_count(outputs);
+    c.mul + c.add + 10 * c.div + 10 * c.sqrt
+}
+
+/// Both forward-dynamics expansions, the one of lower [`weighted_cost`] kept (the
+/// articulated-body algorithm on a tie): its graph, q̈ and method.
+fn cheapest_forward_dynamics(model: &Model) -> (Graph, Vec<Node>, ForwardMethod) {
+    let (aba_graph, aba) = forward_dynamics_by(model, ForwardMethod::ArticulatedBody);
+    let (ldlt_graph, ldlt) = forward_dynamics_by(model, ForwardMethod::MassMatrixLdlt);
+    if weighted_cost(&aba_graph, &aba) <= weighted_cost(&ldlt_graph, &ldlt) {
+        (aba_graph, aba, ForwardMethod::ArticulatedBody)
     } else {
-        (
-            ldlt,
+        (ldlt_graph, ldlt, ForwardMethod::MassMatrixLdlt)
+    }
+}
+
+fn forward_dynamics(model: &Model) -> Expanded {
+    let (graph, qdd, method) = cheapest_forward_dynamics(model);
+    let method = match method {
+        ForwardMethod::ArticulatedBody => {
+            "the articulated-body algorithm (fewer operations than LDLᵀ of M here)"
+        }
+        ForwardMethod::MassMatrixLdlt => {
             "a tree-sparse LDLᵀ factorization of M (fewer operations than the articulated-body \
-             algorithm here)",
-        )
+             algorithm here)"
+        }
     };
     Expanded {
         graph,
