@@ -7,7 +7,8 @@
 //!   along q ⊕ t e_j (the free base moved on its manifold by `integrate_configuration`, so
 //!   the q-columns are in the tangent space, as Pinocchio's) and along v, and M⁻¹ M = 1.
 
-use dynamics_runtime::{integrate_configuration, mechanism};
+use dynamics_runtime::mechanism;
+use dynamics_tests::free_tree;
 use serde::Deserialize;
 
 mechanism! {
@@ -193,47 +194,6 @@ fn derivatives_match_pinocchio() {
     );
 }
 
-/// A state of the free tree: q (position, a unit quaternion, three joint values), v, a.
-fn free_tree_state(k: usize) -> ([f64; 10], [f64; 9], [f64; 9]) {
-    let s = k as f64;
-    let quaternion = [0.1 + 0.05 * s, -0.2, 0.3, 0.9 - 0.1 * s];
-    let norm = quaternion.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let q = [
-        0.3 - 0.1 * s,
-        0.2 * s,
-        1.0,
-        quaternion[0] / norm,
-        quaternion[1] / norm,
-        quaternion[2] / norm,
-        quaternion[3] / norm,
-        (0.7 + s).sin(),
-        (0.3 * s).cos(),
-        0.05 * s,
-    ];
-    let v = [
-        0.3,
-        -0.2 + 0.1 * s,
-        0.1,
-        0.5 - 0.2 * s,
-        0.4,
-        -0.3,
-        1.1,
-        -0.7 + 0.3 * s,
-        0.2,
-    ];
-    let a = [0.1, 0.4, -0.3, 0.2 * s, -0.5, 0.6, -1.0, 0.8, 0.3 - 0.1 * s];
-    (q, v, a)
-}
-
-/// q ⊕ t e_col: the free base moves on its manifold.
-fn moved(q: &[f64; 10], col: usize, t: f64) -> [f64; 10] {
-    let mut e = [0.0; 9];
-    e[col] = 1.0;
-    let mut out = [0.0; 10];
-    integrate_configuration(q, &e, t, &[(0, 0)], &mut out);
-    out
-}
-
 /// Central differences of `f` along q ⊕ t e_j and along v + t e_j, column by column.
 fn central_differences(
     f: impl Fn(&[f64; 10], &[f64; 9]) -> [f64; 9],
@@ -243,7 +203,10 @@ fn central_differences(
     let h = 1e-6;
     let (mut by_q, mut by_v) = ([[0.0; 9]; 9], [[0.0; 9]; 9]);
     for col in 0..9 {
-        let (plus, minus) = (f(&moved(q, col, h), v), f(&moved(q, col, -h), v));
+        let (plus, minus) = (
+            f(&free_tree::moved(q, &free_tree::unit(col), h), v),
+            f(&free_tree::moved(q, &free_tree::unit(col), -h), v),
+        );
         let (mut v_plus, mut v_minus) = (*v, *v);
         v_plus[col] += h;
         v_minus[col] -= h;
@@ -263,7 +226,11 @@ fn rows(m: &[[f64; 9]; 9]) -> Vec<Vec<f64>> {
 #[test]
 fn derivatives_of_a_free_tree_are_the_central_differences() {
     for k in 0..6 {
-        let (q, v, a) = free_tree_state(k);
+        let (q, v, a) = (
+            free_tree::configuration(k),
+            free_tree::velocity(k),
+            free_tree::acceleration(k),
+        );
         let (dtau_dq, dtau_dv) = FreeTreeDerivatives::inverse_dynamics_derivatives(&q, &v, &a);
         let (fd_q, fd_v) = central_differences(
             |q, v| FreeTreeDerivatives::inverse_dynamics(q, v, &a),

@@ -13,7 +13,8 @@
 //! - every frame output and Ȧ_G v against the runtime reference, to 1e-12, on the free tree,
 //!   the UR5 and the Panda.
 
-use dynamics_runtime::{integrate_configuration, mechanism, Mechanism, Reference};
+use dynamics_runtime::{mechanism, Mechanism, Reference};
+use dynamics_tests::free_tree;
 use nalgebra::Matrix6xX;
 use serde::Deserialize;
 use std::collections::HashMap;
@@ -122,6 +123,20 @@ struct FrameOutputs<const NQ: usize, const NV: usize, const NF: usize> {
     biases: fn(&[f64; NQ], &[f64; NV]) -> [[f64; 6]; NF],
 }
 
+/// The frame outputs of a generated mechanism, in f64.
+macro_rules! frame_outputs {
+    ($m:ty) => {
+        FrameOutputs {
+            names: <$m as Mechanism>::FRAME_NAMES,
+            placements: <$m>::frame_placements::<f64>,
+            jacobians: <$m>::frame_jacobians::<f64>,
+            local: <$m>::frame_jacobians_local::<f64>,
+            velocities: <$m>::frame_velocities::<f64>,
+            biases: <$m>::frame_acceleration_biases::<f64>,
+        }
+    };
+}
+
 /// Compares every frame Pinocchio has and the robot generates; returns how many frames were
 /// compared.
 fn check_frames<const NQ: usize, const NV: usize, const NF: usize>(
@@ -211,14 +226,7 @@ fn urdf_frames_of_the_ur5_match_pinocchio() {
         ["base", "ee_link", "tool0"]
     );
     assert_eq!(Ur5Frames::FRAME_TOOL0, 2);
-    let outputs = FrameOutputs {
-        names: <Ur5Frames as Mechanism>::FRAME_NAMES,
-        placements: Ur5Frames::frame_placements::<f64>,
-        jacobians: Ur5Frames::frame_jacobians::<f64>,
-        local: Ur5Frames::frame_jacobians_local::<f64>,
-        velocities: Ur5Frames::frame_velocities::<f64>,
-        biases: Ur5Frames::frame_acceleration_biases::<f64>,
-    };
+    let outputs = frame_outputs!(Ur5Frames);
     assert_eq!(check_frames("ur5", &outputs), 2);
 }
 
@@ -226,14 +234,7 @@ fn urdf_frames_of_the_ur5_match_pinocchio() {
 fn declared_frames_of_the_panda_match_pinocchio() {
     // The root link comes first, then the declared frames.
     assert_eq!(PandaFrames::FRAME_PANDA_HAND_TCP, 5);
-    let outputs = FrameOutputs {
-        names: <PandaFrames as Mechanism>::FRAME_NAMES,
-        placements: PandaFrames::frame_placements::<f64>,
-        jacobians: PandaFrames::frame_jacobians::<f64>,
-        local: PandaFrames::frame_jacobians_local::<f64>,
-        velocities: PandaFrames::frame_velocities::<f64>,
-        biases: PandaFrames::frame_acceleration_biases::<f64>,
-    };
+    let outputs = frame_outputs!(PandaFrames);
     assert_eq!(check_frames("panda", &outputs), 5);
 }
 
@@ -266,53 +267,6 @@ fn centroidal_bias_matches_pinocchio() {
     check_centroidal_bias("panda", PandaFrames::centroidal_bias::<f64>);
 }
 
-/// A configuration of the free tree: position, a unit quaternion, three joint values.
-fn free_tree_configuration(k: usize) -> [f64; 10] {
-    let s = k as f64;
-    let quaternion = [0.1 + 0.05 * s, -0.2, 0.3, 0.9 - 0.1 * s];
-    let norm = quaternion.iter().map(|x| x * x).sum::<f64>().sqrt();
-    [
-        0.3 - 0.1 * s,
-        0.2 * s,
-        1.0,
-        quaternion[0] / norm,
-        quaternion[1] / norm,
-        quaternion[2] / norm,
-        quaternion[3] / norm,
-        (0.7 + s).sin(),
-        (0.3 * s).cos(),
-        0.05 * s,
-    ]
-}
-
-fn free_tree_velocity(k: usize) -> [f64; 9] {
-    let s = k as f64;
-    [
-        0.3,
-        -0.2 + 0.1 * s,
-        0.1,
-        0.5 - 0.2 * s,
-        0.4,
-        -0.3,
-        1.1,
-        -0.7 + 0.3 * s,
-        0.2,
-    ]
-}
-
-/// q ⊕ t v for the free tree: the free base moves on its manifold.
-fn moved(q: &[f64; 10], v: &[f64; 9], t: f64) -> [f64; 10] {
-    let mut out = [0.0; 10];
-    integrate_configuration(q, v, t, &[(0, 0)], &mut out);
-    out
-}
-
-fn unit(col: usize) -> [f64; 9] {
-    let mut v = [0.0; 9];
-    v[col] = 1.0;
-    v
-}
-
 #[test]
 fn frame_jacobians_of_a_free_tree_are_the_derivatives_of_the_placements() {
     assert_eq!(
@@ -322,12 +276,14 @@ fn frame_jacobians_of_a_free_tree_are_the_derivatives_of_the_placements() {
     let h = 1e-6;
     let mut moving_columns = 0;
     for k in 0..6 {
-        let q = free_tree_configuration(k);
+        let q = free_tree::configuration(k);
         let jacobians = FreeTreeFrames::frame_jacobians(&q);
         let here = FreeTreeFrames::frame_placements(&q);
         for col in 0..9 {
-            let plus = FreeTreeFrames::frame_placements(&moved(&q, &unit(col), h));
-            let minus = FreeTreeFrames::frame_placements(&moved(&q, &unit(col), -h));
+            let plus =
+                FreeTreeFrames::frame_placements(&free_tree::moved(&q, &free_tree::unit(col), h));
+            let minus =
+                FreeTreeFrames::frame_placements(&free_tree::moved(&q, &free_tree::unit(col), -h));
             for f in 0..5 {
                 // Linear rows: dp/dt. Angular rows: ω with Ṙ Rᵀ = ω̂.
                 let rate = |r: usize, c: usize| (plus[f].0[r][c] - minus[f].0[r][c]) / (2.0 * h);
@@ -367,10 +323,10 @@ fn frame_jacobians_of_a_free_tree_are_the_derivatives_of_the_placements() {
 fn frame_acceleration_biases_of_a_free_tree_are_the_rate_of_j_v() {
     let h = 1e-6;
     for k in 0..6 {
-        let (q, v) = (free_tree_configuration(k), free_tree_velocity(k));
+        let (q, v) = (free_tree::configuration(k), free_tree::velocity(k));
         let biases = FreeTreeFrames::frame_acceleration_biases(&q, &v);
-        let plus = FreeTreeFrames::frame_velocities(&moved(&q, &v, h), &v);
-        let minus = FreeTreeFrames::frame_velocities(&moved(&q, &v, -h), &v);
+        let plus = FreeTreeFrames::frame_velocities(&free_tree::moved(&q, &v, h), &v);
+        let minus = FreeTreeFrames::frame_velocities(&free_tree::moved(&q, &v, -h), &v);
         for f in 0..5 {
             for r in 0..6 {
                 let rate = (plus[f][r] - minus[f][r]) / (2.0 * h);
@@ -388,13 +344,16 @@ fn frame_acceleration_biases_of_a_free_tree_are_the_rate_of_j_v() {
 fn centroidal_bias_of_a_free_tree_is_the_rate_of_a_g_v() {
     let h = 1e-6;
     for k in 0..6 {
-        let (q, v) = (free_tree_configuration(k), free_tree_velocity(k));
+        let (q, v) = (free_tree::configuration(k), free_tree::velocity(k));
         let bias = FreeTreeFrames::centroidal_bias(&q, &v);
         let momentum = |q: &[f64; 10]| {
             let a = FreeTreeFrames::centroidal_momentum_matrix(q);
             a.map(|row| (0..9).map(|c| row[c] * v[c]).sum::<f64>())
         };
-        let (plus, minus) = (momentum(&moved(&q, &v, h)), momentum(&moved(&q, &v, -h)));
+        let (plus, minus) = (
+            momentum(&free_tree::moved(&q, &v, h)),
+            momentum(&free_tree::moved(&q, &v, -h)),
+        );
         for r in 0..6 {
             let rate = (plus[r] - minus[r]) / (2.0 * h);
             assert!(
@@ -478,17 +437,10 @@ fn check_against_reference<M: Mechanism, const NQ: usize, const NV: usize, const
 #[test]
 fn frames_and_centroidal_bias_match_the_reference() {
     let free_tree: Vec<_> = (0..6)
-        .map(|k| (free_tree_configuration(k), free_tree_velocity(k)))
+        .map(|k| (free_tree::configuration(k), free_tree::velocity(k)))
         .collect();
     check_against_reference::<FreeTreeFrames, 10, 9, 5>(
-        &FrameOutputs {
-            names: <FreeTreeFrames as Mechanism>::FRAME_NAMES,
-            placements: FreeTreeFrames::frame_placements::<f64>,
-            jacobians: FreeTreeFrames::frame_jacobians::<f64>,
-            local: FreeTreeFrames::frame_jacobians_local::<f64>,
-            velocities: FreeTreeFrames::frame_velocities::<f64>,
-            biases: FreeTreeFrames::frame_acceleration_biases::<f64>,
-        },
+        &frame_outputs!(FreeTreeFrames),
         FreeTreeFrames::centroidal_bias::<f64>,
         &free_tree,
     );
@@ -500,14 +452,7 @@ fn frames_and_centroidal_bias_match_the_reference() {
         .map(|(q, v)| (q.try_into().expect("nq"), v.try_into().expect("nv")))
         .collect();
     check_against_reference::<Ur5Frames, 6, 6, 3>(
-        &FrameOutputs {
-            names: <Ur5Frames as Mechanism>::FRAME_NAMES,
-            placements: Ur5Frames::frame_placements::<f64>,
-            jacobians: Ur5Frames::frame_jacobians::<f64>,
-            local: Ur5Frames::frame_jacobians_local::<f64>,
-            velocities: Ur5Frames::frame_velocities::<f64>,
-            biases: Ur5Frames::frame_acceleration_biases::<f64>,
-        },
+        &frame_outputs!(Ur5Frames),
         Ur5Frames::centroidal_bias::<f64>,
         &ur5,
     );
@@ -516,14 +461,7 @@ fn frames_and_centroidal_bias_match_the_reference() {
         .map(|(q, v)| (q.try_into().expect("nq"), v.try_into().expect("nv")))
         .collect();
     check_against_reference::<PandaFrames, 7, 7, 6>(
-        &FrameOutputs {
-            names: <PandaFrames as Mechanism>::FRAME_NAMES,
-            placements: PandaFrames::frame_placements::<f64>,
-            jacobians: PandaFrames::frame_jacobians::<f64>,
-            local: PandaFrames::frame_jacobians_local::<f64>,
-            velocities: PandaFrames::frame_velocities::<f64>,
-            biases: PandaFrames::frame_acceleration_biases::<f64>,
-        },
+        &frame_outputs!(PandaFrames),
         PandaFrames::centroidal_bias::<f64>,
         &panda,
     );

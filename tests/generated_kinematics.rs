@@ -12,7 +12,8 @@
 //!   `integrate_configuration`), J̇ v against central differences of J v along the motion,
 //!   and A_G q̇ against the bodies' momentum summed from the placements and Jacobians.
 
-use dynamics_runtime::{integrate_configuration, mechanism, Mechanism, Reference};
+use dynamics_runtime::{mechanism, Mechanism, Reference};
+use dynamics_tests::free_tree;
 use serde::Deserialize;
 
 mechanism! {
@@ -315,31 +316,12 @@ fn centroidal_momentum_matrix_matches_pinocchio() {
     check_centroidal("panda", PandaKinematics::centroidal_momentum_matrix::<f64>);
 }
 
-/// A configuration of the free tree: position, a unit quaternion, three joint values.
-fn free_tree_configuration(k: usize) -> [f64; 10] {
-    let s = k as f64;
-    let quaternion = [0.1 + 0.05 * s, -0.2, 0.3, 0.9 - 0.1 * s];
-    let norm = quaternion.iter().map(|x| x * x).sum::<f64>().sqrt();
-    [
-        0.3 - 0.1 * s,
-        0.2 * s,
-        1.0,
-        quaternion[0] / norm,
-        quaternion[1] / norm,
-        quaternion[2] / norm,
-        quaternion[3] / norm,
-        (0.7 + s).sin(),
-        (0.3 * s).cos(),
-        0.05 * s,
-    ]
-}
-
 #[test]
 fn centre_of_mass_of_a_free_tree_matches_the_reference() {
     let model = <FreeTreeKinematics as Mechanism>::model();
     let mut reference = Reference::<f64>::new(&model);
     for k in 0..6 {
-        let q = free_tree_configuration(k);
+        let q = free_tree::configuration(k);
         let generated = FreeTreeKinematics::center_of_mass(&q);
         let expected = reference.center_of_mass(&q).expect("sizes match");
         for row in 0..3 {
@@ -356,7 +338,7 @@ fn placements_of_a_free_tree_match_the_reference() {
     let model = <FreeTreeKinematics as Mechanism>::model();
     let mut reference = Reference::<f64>::new(&model);
     for k in 0..6 {
-        let q = free_tree_configuration(k);
+        let q = free_tree::configuration(k);
         let generated = FreeTreeKinematics::joint_placements(&q);
         let expected = reference.body_poses(&q).expect("sizes match");
         for (b, (rotation, origin)) in generated.iter().enumerate() {
@@ -377,25 +359,24 @@ fn placements_of_a_free_tree_match_the_reference() {
     }
 }
 
-/// q ⊕ (s h e_col) for the free tree: the free base moves on its manifold.
-fn moved(q: &[f64; 10], col: usize, step: f64) -> [f64; 10] {
-    let mut v = [0.0; 9];
-    v[col] = 1.0;
-    let mut out = [0.0; 10];
-    integrate_configuration(q, &v, step, &[(0, 0)], &mut out);
-    out
-}
-
 #[test]
 fn joint_jacobians_of_a_free_tree_are_the_derivatives_of_the_placements() {
     let h = 1e-6;
     for k in 0..6 {
-        let q = free_tree_configuration(k);
+        let q = free_tree::configuration(k);
         let jacobians = FreeTreeKinematics::joint_jacobians(&q);
         let here = FreeTreeKinematics::joint_placements(&q);
         for col in 0..9 {
-            let plus = FreeTreeKinematics::joint_placements(&moved(&q, col, h));
-            let minus = FreeTreeKinematics::joint_placements(&moved(&q, col, -h));
+            let plus = FreeTreeKinematics::joint_placements(&free_tree::moved(
+                &q,
+                &free_tree::unit(col),
+                h,
+            ));
+            let minus = FreeTreeKinematics::joint_placements(&free_tree::moved(
+                &q,
+                &free_tree::unit(col),
+                -h,
+            ));
             for b in 0..4 {
                 // Linear rows: dp/dt. Angular rows: ω with Ṙ Rᵀ = ω̂.
                 let rate = |r: usize, c: usize| (plus[b].0[r][c] - minus[b].0[r][c]) / (2.0 * h);
@@ -425,11 +406,16 @@ fn joint_jacobians_of_a_free_tree_are_the_derivatives_of_the_placements() {
 fn centre_of_mass_jacobian_of_a_free_tree_is_the_derivative() {
     let h = 1e-6;
     for k in 0..6 {
-        let q = free_tree_configuration(k);
+        let q = free_tree::configuration(k);
         let jacobian = FreeTreeKinematics::center_of_mass_jacobian(&q);
         for col in 0..9 {
-            let plus = FreeTreeKinematics::center_of_mass(&moved(&q, col, h));
-            let minus = FreeTreeKinematics::center_of_mass(&moved(&q, col, -h));
+            let plus =
+                FreeTreeKinematics::center_of_mass(&free_tree::moved(&q, &free_tree::unit(col), h));
+            let minus = FreeTreeKinematics::center_of_mass(&free_tree::moved(
+                &q,
+                &free_tree::unit(col),
+                -h,
+            ));
             for row in 0..3 {
                 let difference = (plus[row] - minus[row]) / (2.0 * h);
                 assert!(
@@ -449,7 +435,7 @@ fn centre_of_mass_jacobian_of_a_free_tree_is_the_derivative() {
 fn centroidal_momentum_of_a_free_tree_is_the_bodies_momentum() {
     let model = <FreeTreeKinematics as Mechanism>::model();
     for k in 0..6 {
-        let q = free_tree_configuration(k);
+        let q = free_tree::configuration(k);
         let v: [f64; 9] = std::array::from_fn(|i| (0.4 * i as f64 + 0.3 * k as f64).sin());
         let a = FreeTreeKinematics::centroidal_momentum_matrix(&q);
         let generated: Vec<f64> = (0..6)
@@ -504,13 +490,10 @@ fn centroidal_momentum_of_a_free_tree_is_the_bodies_momentum() {
 fn acceleration_biases_of_a_free_tree_are_the_rate_of_the_jacobians() {
     let h = 1e-6;
     for k in 0..6 {
-        let q = free_tree_configuration(k);
+        let q = free_tree::configuration(k);
         let v: [f64; 9] = std::array::from_fn(|i| (0.4 * i as f64 + 0.3 * k as f64).cos());
-        let along = |step: f64| {
-            let mut out = [0.0; 10];
-            integrate_configuration(&q, &v, step, &[(0, 0)], &mut out);
-            FreeTreeKinematics::joint_velocities(&out, &v)
-        };
+        let along =
+            |step: f64| FreeTreeKinematics::joint_velocities(&free_tree::moved(&q, &v, step), &v);
         let (plus, minus) = (along(h), along(-h));
         let bias = FreeTreeKinematics::joint_acceleration_biases(&q, &v);
         for b in 0..4 {

@@ -80,6 +80,68 @@ pub fn max_abs_dd(values: &[DoubleDouble]) -> f64 {
     values.iter().fold(0.0_f64, |m, x| m.max(x.to_f64().abs()))
 }
 
+/// States of the free-floating test trees of `generated_kinematics`, `generated_frames` and
+/// `generated_derivatives`: a free base (q: position, unit quaternion) and three joints of
+/// one coordinate each (nq = 10, nv = 9).
+pub mod free_tree {
+    use dynamics_runtime::integrate_configuration;
+
+    /// Configuration number `k`: position, a unit quaternion, three joint values.
+    pub fn configuration(k: usize) -> [f64; 10] {
+        let s = k as f64;
+        let quaternion = [0.1 + 0.05 * s, -0.2, 0.3, 0.9 - 0.1 * s];
+        let norm = quaternion.iter().map(|x| x * x).sum::<f64>().sqrt();
+        [
+            0.3 - 0.1 * s,
+            0.2 * s,
+            1.0,
+            quaternion[0] / norm,
+            quaternion[1] / norm,
+            quaternion[2] / norm,
+            quaternion[3] / norm,
+            (0.7 + s).sin(),
+            (0.3 * s).cos(),
+            0.05 * s,
+        ]
+    }
+
+    /// Velocity number `k` ([v; ω] of the base in its frame, then the joint rates).
+    pub fn velocity(k: usize) -> [f64; 9] {
+        let s = k as f64;
+        [
+            0.3,
+            -0.2 + 0.1 * s,
+            0.1,
+            0.5 - 0.2 * s,
+            0.4,
+            -0.3,
+            1.1,
+            -0.7 + 0.3 * s,
+            0.2,
+        ]
+    }
+
+    /// Acceleration number `k`.
+    pub fn acceleration(k: usize) -> [f64; 9] {
+        let s = k as f64;
+        [0.1, 0.4, -0.3, 0.2 * s, -0.5, 0.6, -1.0, 0.8, 0.3 - 0.1 * s]
+    }
+
+    /// e_col, the unit velocity of one coordinate.
+    pub fn unit(col: usize) -> [f64; 9] {
+        let mut v = [0.0; 9];
+        v[col] = 1.0;
+        v
+    }
+
+    /// q ⊕ t v: the free base moves on its manifold.
+    pub fn moved(q: &[f64; 10], v: &[f64; 9], t: f64) -> [f64; 10] {
+        let mut out = [0.0; 10];
+        integrate_configuration(q, v, t, &[(0, 0)], &mut out);
+        out
+    }
+}
+
 /// The Pinocchio anchor files: models and sampled results (see
 /// `tests/data/pinocchio/*.json` and their `conventions` field).
 pub mod anchors {
