@@ -18,6 +18,7 @@
 //! | `centroidal_momentum_matrix(q)` | A_G: momentum and angular momentum about the centre of mass (asked for by name) | [`kinematics`] |
 //! | `joint_velocities(q, v)`, `joint_acceleration_biases(q, v)` | each body's [v_P; ω] and J̇ q̇, world axes at its origin (asked for by name) | [`kinematics`] + [`rnea`]'s forward sweep |
 //! | `joint_placements(q)`, `joint_jacobians(q)` | each body's (R, p) in the world and its 6 × nv Jacobian, world-aligned at its origin (asked for by name) | [`kinematics`] |
+//! | `joint_jacobians_world(q)`, `joint_jacobians_world_time_variation(q, v)` | all joint Jacobians in one 6 × nv matrix, WORLD convention (Pinocchio's `data.J`), and its rate J̇ (asked for by name) | [`kinematics`] |
 //! | `frame_placements(q)`, `frame_jacobians(q)`, `frame_jacobians_local(q)` | each operational frame's (R, p) in the world and its 6 × nv Jacobian, world-aligned at its origin or in its own axes (asked for by name) | [`frames`] |
 //! | `frame_velocities(q, v)`, `frame_acceleration_biases(q, v)` | each operational frame's [v; ω] and J̇ q̇, world axes at its origin (asked for by name) | [`frames`] + [`rnea`]'s forward sweep |
 //! | `centroidal_bias(q, v)` | Ȧ_G q̇ (asked for by name) | [`kinematics`] + [`rnea`]'s forward sweep |
@@ -180,6 +181,20 @@ pub(crate) const CATALOG: &[Entry] = &[
         arrays: &[Array::Q],
         loads: false,
         expand: joint_jacobians,
+    },
+    Entry {
+        name: "joint_jacobians_world",
+        wanted: |m| m.outputs.joint_jacobians_world && m.nv > 0,
+        arrays: &[Array::Q],
+        loads: false,
+        expand: joint_jacobians_world,
+    },
+    Entry {
+        name: "joint_jacobians_world_time_variation",
+        wanted: |m| m.outputs.joint_jacobians_world_time_variation && m.nv > 0,
+        arrays: &[Array::Q, Array::V],
+        loads: false,
+        expand: joint_jacobians_world_time_variation,
     },
     Entry {
         name: "joint_velocities",
@@ -829,6 +844,52 @@ fn joint_jacobians(model: &Model) -> Expanded {
               [linear; angular], at the frame's origin with the world's axes: \
               [v_P; ω] in world coordinates = J q̇ (Pinocchio's `getJointJacobian` in \
               `LOCAL_WORLD_ALIGNED`). Columns of joints that do not move the body are zero."
+            .to_owned(),
+    }
+}
+
+/// 6 rows [linear; angular] of nv entries from full columns.
+fn rows_of(g: &Graph, columns: &[(Vec3, Vec3)]) -> Vec<Vec<Node>> {
+    let columns: Vec<_> = columns.iter().copied().map(Some).collect();
+    kinematics::jacobian_rows(g, &columns)
+}
+
+fn joint_jacobians_world(model: &Model) -> Expanded {
+    let (g, t, _) = fresh_graph(model);
+    let poses = kinematics::body_poses(&g, model, &t);
+    let columns = kinematics::world_jacobian_columns(&g, model, &poses);
+    Expanded {
+        output: Output::Matrix(rows_of(&g, &columns)),
+        graph: g,
+        doc: "All the joint Jacobians in one 6 × nv matrix, Pinocchio's WORLD convention \
+              (its `data.J` after `computeJointJacobians`): column k, rows [linear; angular], \
+              is the motion velocity coordinate k gives its joint's body at unit rate, \
+              [v_O; ω] with v_O the velocity of the body point at the world origin, world \
+              axes. Body i's WORLD Jacobian is the columns of the joints from the root to i \
+              (zero elsewhere); shifted to its origin p_i (v_P = v_O + ω × p_i) they give \
+              `joint_jacobians`. One matrix instead of one per body: the compact form to \
+              store, or to pick a few bodies' columns from."
+            .to_owned(),
+    }
+}
+
+fn joint_jacobians_world_time_variation(model: &Model) -> Expanded {
+    let (g, t, _) = fresh_graph(model);
+    let v = inputs(&g, Array::V, model.nv);
+    let poses = kinematics::body_poses(&g, model, &t);
+    let columns = kinematics::world_jacobian_columns(&g, model, &poses);
+    let rates = kinematics::world_jacobian_rates(&g, model, &columns, &v);
+    Expanded {
+        output: Output::Tuple(vec![
+            Output::Matrix(rows_of(&g, &columns)),
+            Output::Matrix(rows_of(&g, &rates)),
+        ]),
+        graph: g,
+        doc: "(J, J̇): the matrix of `joint_jacobians_world` and its time derivative along \
+              the velocity v, both 6 × nv in Pinocchio's WORLD convention (its `data.J` and \
+              `data.dJ` after `computeJointJacobiansTimeVariation`). Column k of J̇ is \
+              V_j × J[:, k], the motion cross product with the spatial velocity V_j of \
+              coordinate k's body (world axes, at the world origin)."
             .to_owned(),
     }
 }

@@ -52,7 +52,7 @@
 use super::crba;
 use super::geometry::{BodyInertia, JointTransform};
 use super::rnea::{self, SweepInputs};
-use super::spatial::{inertia_times, motion_subspace};
+use super::spatial::{add6, inertia_times, motion_cross, motion_subspace, scale6, Six};
 use crate::model::{JointKind, Model};
 use crate::sym::{Graph, Mat3, Node, Vec3};
 
@@ -268,6 +268,73 @@ pub fn body_jacobians(
             jacobian_rows(g, &columns)
         })
         .collect()
+}
+
+/// The joint Jacobians in Pinocchio's WORLD convention, all in one 6 × nv matrix (its
+/// `data.J` after `computeJointJacobians`): column k is the spatial motion that velocity
+/// coordinate k gives its joint's body at unit rate, [v_O; ω] with v_O the velocity of the
+/// body point passing through the world origin O, world axes (joint j's body at (R_j, p_j)):
+///
+/// ```text
+/// revolute about a = R_j s:  [p_j × a; a]        prismatic along a:  [a; 0]
+/// free (v in the body frame): [R_j e_k; 0],  [p_j × R_j e_k; R_j e_k]
+/// ```
+///
+/// Body i's WORLD Jacobian is these columns over the joints from the root to i (zero
+/// elsewhere); its LOCAL_WORLD_ALIGNED one shifts each to P_i: v_P = v_O + ω × p_i.
+pub fn world_jacobian_columns(g: &Graph, model: &Model, poses: &[Pose]) -> Vec<Six> {
+    let mut columns: Vec<Six> = vec![(Vec3::zero(g), Vec3::zero(g)); model.nv];
+    for (j, body) in model.bodies.iter().enumerate() {
+        let pose = &poses[j];
+        let about_origin = |axis: Vec3| (pose.origin_in_world.cross(g, axis), axis);
+        let k = body.joint.idx_v;
+        match body.joint.kind {
+            JointKind::Revolute { axis_in_joint } => {
+                columns[k] = about_origin(axis_in_world(g, pose, axis_in_joint));
+            }
+            JointKind::Prismatic { axis_in_joint } => {
+                columns[k] = (axis_in_world(g, pose, axis_in_joint), Vec3::zero(g));
+            }
+            JointKind::Free => {
+                for e in 0..3 {
+                    let axis = pose.rotation_in_world.col(e);
+                    columns[k + e] = (axis, Vec3::zero(g));
+                    columns[k + 3 + e] = about_origin(axis);
+                }
+            }
+        }
+    }
+    columns
+}
+
+/// J̇ of [`world_jacobian_columns`] (Pinocchio's `data.dJ` after
+/// `computeJointJacobiansTimeVariation`). A column is body j's frame carrying a constant
+/// motion s, X_j s, so its rate is V_j × X_j s with V_j = Σ (columns of the joints from the
+/// root to j) q̇ the body's spatial velocity in the world at O (motion cross product
+/// [v; ω] × [u; a] = [ω × u + v × a; ω × a]). For a one-coordinate joint V_j may be taken
+/// as the parent's, since s × s = 0.
+pub fn world_jacobian_rates(
+    g: &Graph,
+    model: &Model,
+    columns: &[Six],
+    velocity: &[Node],
+) -> Vec<Six> {
+    let zero: Six = (Vec3::zero(g), Vec3::zero(g));
+    let mut body_velocities: Vec<Six> = Vec::with_capacity(model.bodies.len());
+    let mut rates: Vec<Six> = vec![zero; model.nv];
+    for body in &model.bodies {
+        let parent = body.parent.map_or(zero, |p| body_velocities[p]);
+        let dofs = body.joint.idx_v..body.joint.idx_v + body.joint.kind.dofs();
+        let own = dofs.clone().fold(parent, |sum, k| {
+            add6(g, sum, scale6(g, columns[k], velocity[k]))
+        });
+        let carrier = if dofs.len() == 1 { parent } else { own };
+        for k in dofs {
+            rates[k] = motion_cross(g, carrier, columns[k]);
+        }
+        body_velocities.push(own);
+    }
+    rates
 }
 
 /// A_G, the centroidal momentum matrix: 6 rows [linear; angular about the centre of mass]

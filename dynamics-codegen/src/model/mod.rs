@@ -63,6 +63,10 @@ pub struct Outputs {
     pub joint_placements: bool,
     /// Every body frame's Jacobian, world-aligned at its origin.
     pub joint_jacobians: bool,
+    /// All joint Jacobians in one 6 × nv matrix, WORLD convention (Pinocchio's data.J).
+    pub joint_jacobians_world: bool,
+    /// That matrix and its time derivative (data.J and data.dJ).
+    pub joint_jacobians_world_time_variation: bool,
     /// The centroidal momentum matrix A_G.
     pub centroidal_momentum_matrix: bool,
     /// Every body frame's velocity [v_P; ω], world-aligned at its origin.
@@ -93,7 +97,7 @@ impl Outputs {
     /// The output names the language accepts: the names of the functions they generate
     /// (`kinetic_energy` and `potential_energy` come together, as do the three constraint
     /// functions).
-    pub const NAMES: [&'static str; 31] = [
+    pub const NAMES: [&'static str; 33] = [
         "inverse_dynamics",
         "gravity",
         "bias",
@@ -113,6 +117,8 @@ impl Outputs {
         "center_of_mass_jacobian",
         "joint_placements",
         "joint_jacobians",
+        "joint_jacobians_world",
+        "joint_jacobians_world_time_variation",
         "centroidal_momentum_matrix",
         "joint_velocities",
         "joint_acceleration_biases",
@@ -156,6 +162,8 @@ impl Outputs {
             center_of_mass_jacobian: false,
             joint_placements: false,
             joint_jacobians: false,
+            joint_jacobians_world: false,
+            joint_jacobians_world_time_variation: false,
             centroidal_momentum_matrix: false,
             joint_velocities: false,
             joint_acceleration_biases: false,
@@ -209,6 +217,10 @@ impl Outputs {
             "center_of_mass_jacobian" => &mut self.center_of_mass_jacobian,
             "joint_placements" => &mut self.joint_placements,
             "joint_jacobians" => &mut self.joint_jacobians,
+            "joint_jacobians_world" => &mut self.joint_jacobians_world,
+            "joint_jacobians_world_time_variation" => {
+                &mut self.joint_jacobians_world_time_variation
+            }
             "centroidal_momentum_matrix" => &mut self.centroidal_momentum_matrix,
             "joint_velocities" => &mut self.joint_velocities,
             "joint_acceleration_biases" => &mut self.joint_acceleration_biases,

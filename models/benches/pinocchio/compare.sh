@@ -3,6 +3,7 @@
 # for the dynamics and one for the kinematics.
 #
 #   bash models/benches/pinocchio/compare.sh [--quick] [--native] [--models "ur5 panda quadruped"]
+#                                            [--setup-only]
 #
 # Needs Python >= 3.9 (with venv), g++ (C++17) and the Rust toolchain, and the network for
 # the first run. Steps:
@@ -26,6 +27,8 @@
 # no external forces.
 # Kinematics: each Pinocchio call beside the generated function(s) a user would call
 # instead (models/src/kinematics.rs): forwardKinematics(q) ~ joint_placements;
+# computeJointJacobians ~ joint_jacobians_world (both give data.J, WORLD);
+# computeJointJacobiansTimeVariation ~ joint_jacobians_world_time_variation (data.J, data.dJ);
 # forwardKinematics(q, v, a) ~ joint_velocities + joint_acceleration_biases (ours gives
 # v and J̇v; Pinocchio also gives the accelerations for a); computeJointJacobians ~
 # joint_jacobians; computeJointJacobiansTimeVariation ~ joint_jacobians +
@@ -42,7 +45,8 @@
 # table. --quick shortens both sides' measurements (for trying the script, not for
 # figures). --native builds the generated code for this CPU too (RUSTFLAGS
 # "-C target-cpu=native", in target/native), as Pinocchio is always built (-march=native);
-# without it ours is built for baseline x86-64.
+# without it ours is built for baseline x86-64. --setup-only stops after step 2 (public.sh
+# uses it for the same Pinocchio and timing program).
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -52,12 +56,14 @@ EIGEN_VERSION="${EIGEN_VERSION:-3.4.1}"
 MODELS="pendulum double_pendulum planar3 ur5 panda quadruped"
 QUICK=0
 NATIVE=0
+SETUP_ONLY=0
 BASELINE=compare_pinocchio
 
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) QUICK=1 ;;
     --native) NATIVE=1 ;;
+    --setup-only) SETUP_ONLY=1 ;;
     --models) MODELS="$2"; shift ;;
     -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
     *) echo "compare.sh: unknown argument $1 (try --help)" >&2; exit 2 ;;
@@ -88,6 +94,7 @@ done
 # The generated kinematics benchmarks (benches/dynamics.rs), as a regex alternation: each
 # function alone, and the pairs timed as one call each.
 KIN_OUTPUTS='joint_placements|joint_velocities|joint_acceleration_biases|joint_jacobians'
+KIN_OUTPUTS+='|joint_jacobians_world|joint_jacobians_world_time_variation'
 KIN_OUTPUTS+='|joint_velocities\+joint_acceleration_biases|joint_jacobians\+joint_acceleration_biases'
 KIN_OUTPUTS+='|center_of_mass|center_of_mass_jacobian|centroidal_momentum_matrix'
 KIN_OUTPUTS+='|frame_placements|frame_jacobians|frame_acceleration_biases|centroidal_bias'
@@ -147,6 +154,8 @@ if [ ! -x "$HERE/build/timing" ] || [ "$(cat "$HERE/build/timing.stamp" 2>/dev/n
   mv "$HERE/build/timing.tmp" "$HERE/build/timing"
   echo "$STAMP" > "$HERE/build/timing.stamp"
 fi
+
+if [ "$SETUP_ONLY" = 1 ]; then exit 0; fi
 
 # ---- 3. the quadruped's file ------------------------------------------------------------------
 cd "$ROOT"
@@ -250,9 +259,12 @@ ROBOTS = {"ur5", "panda", "quadruped"}
 KIN_ROWS = [("forwardKinematics(q)", "forwardKinematics_q", "joint_placements", True, False),
             ("forwardKinematics(q, v, a)", "forwardKinematics_qva",
              "joint_velocities+joint_acceleration_biases", True, False),
+            ("computeJointJacobians", "computeJointJacobians", "joint_jacobians_world", True, False),
             ("computeJointJacobians", "computeJointJacobians", "joint_jacobians", True, False),
             ("computeJointJacobians + getJointJacobian × all joints", "computeJointJacobians_getJointJacobian",
              "joint_jacobians", True, False),
+            ("computeJointJacobiansTimeVariation", "computeJointJacobiansTimeVariation",
+             "joint_jacobians_world_time_variation", True, False),
             ("computeJointJacobiansTimeVariation", "computeJointJacobiansTimeVariation",
              "joint_jacobians+joint_acceleration_biases", True, False),
             ("computeJointJacobiansTimeVariation + getJointJacobian, getJointJacobianTimeVariation × all joints, × v",

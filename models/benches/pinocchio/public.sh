@@ -1,0 +1,233 @@
+#!/usr/bin/env bash
+# The generated code against Pinocchio on robots the project never declared: URDFs of
+# example-robot-data, installed at benchmark time, compiled by the macro as a user's crate
+# would, timed beside Pinocchio on the same states.
+#
+#   bash models/benches/pinocchio/public.sh [--quick] [--robots "go2 xarm7 g1"]
+#
+# Steps:
+#   1. `compare.sh --setup-only`: Pinocchio (pin) in ./venv and ./build/timing, as for the
+#      main comparison;
+#   2. installs example-robot-data into the same venv and, with public_robots.py, writes
+#      build/public/<robot>.urdf (the package's file, joint damping and friction removed:
+#      Pinocchio's rnea ignores them) and build/public/<robot>.json (the model Pinocchio
+#      builds from that file, free-flyer root for the legged robots, and 20 seeded states
+#      with Pinocchio's outputs);
+#   3. per robot, a throwaway crate build/public/<robot>/ whose library is one declaration,
+#      `mechanism! { pub struct Robot; urdf: ".."; floating_base: ..; outputs: [..]; }`,
+#      and whose benchmark is public_bench.rs: it checks every timed output against
+#      Pinocchio's at every state (1e-10 relative) before timing;
+#   4. robot by robot, Pinocchio (build/timing) then the generated code, each output one call
+#      per state, medians; the two sides' state fingerprints must match;
+#   5. prints the table (also build/public/comparison.md).
+# Robots: go2 (Unitree quadruped, free base, 18 dof), xarm7 (7-dof arm), g1 (Unitree humanoid,
+# 29 joints, free base, 35 dof). Nothing of example-robot-data is committed.
+set -euo pipefail
+
+HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+ROOT="$(cd "$HERE/../../.." && pwd)"
+ROBOTS="go2 xarm7 g1"
+QUICK=0
+ERD_VERSION="${ERD_VERSION:-6.0.0}"
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --quick) QUICK=1 ;;
+    --robots) ROBOTS="$2"; shift ;;
+    -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
+    *) echo "public.sh: unknown argument $1 (try --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+
+STEP="starting"
+fail() { echo "public.sh: FAILED while $STEP${1:+: $1}" >&2; exit 1; }
+trap 'fail "command exited with status $? (see the output above)"' ERR
+step() { STEP="$1"; echo "==> $1" >&2; }
+
+step "setting up Pinocchio and the timing program (compare.sh --setup-only)"
+bash "$HERE/compare.sh" --setup-only
+VENV="$HERE/venv"
+OUT="$HERE/build/public"
+mkdir -p "$OUT"
+
+step "installing example-robot-data $ERD_VERSION and writing the robots' files"
+if ! grep -qx "example-robot-data==$ERD_VERSION" "$VENV/.installed-erd" 2>/dev/null; then
+  "$VENV/bin/python" -m pip install -q "example-robot-data==$ERD_VERSION" ||
+    fail "pip install example-robot-data==$ERD_VERSION failed (network?)"
+  echo "example-robot-data==$ERD_VERSION" > "$VENV/.installed-erd"
+fi
+# shellcheck disable=SC2086
+"$VENV/bin/python" "$HERE/public_robots.py" "$OUT" $ROBOTS > "$OUT/robots.tsv"
+
+if [ "$QUICK" = 1 ]; then
+  PIN_ARGS=(--reps 5 --min-rep-ms 20 --warmup-ms 50)
+  CRIT_ARGS=(--warm-up-time 0.3 --measurement-time 0.5 --sample-size 10)
+else
+  PIN_ARGS=(--reps 21 --min-rep-ms 100 --warmup-ms 300)
+  CRIT_ARGS=(--warm-up-time 1 --measurement-time 3 --sample-size 21)
+fi
+BASELINE=public_pinocchio
+OUTPUTS="inverse_dynamics, mass_matrix, forward_dynamics, joint_placements, joint_velocities,
+              joint_acceleration_biases, joint_jacobians, joint_jacobians_world,
+              joint_jacobians_world_time_variation, center_of_mass, center_of_mass_jacobian,
+              centroidal_momentum_matrix"
+
+: > "$OUT/pinocchio.tsv"
+: > "$OUT/criterion.log"
+: > "$OUT/load.tsv"
+while IFS=$'\t' read -r robot nq nv base urdf; do
+  CRATE="$OUT/$robot"
+  step "$robot ($nv dof, $base base): writing its crate ($CRATE)"
+  mkdir -p "$CRATE/src"
+  cat > "$CRATE/Cargo.toml" <<EOF
+# Written by public.sh: the generated code of $robot, benchmarked. Not part of the workspace.
+[package]
+name = "public-robot"
+version = "0.0.0"
+edition = "2021"
+publish = false
+
+[workspace]
+
+[dependencies]
+dynamics-runtime = { path = "$ROOT/dynamics-runtime" }
+
+[dev-dependencies]
+criterion = { version = "0.7", default-features = false, features = ["cargo_bench_support"] }
+serde_json = { version = "1", features = ["float_roundtrip"] }
+
+[[bench]]
+name = "public"
+path = "$HERE/public_bench.rs"
+harness = false
+
+[profile.release]
+opt-level = 3
+codegen-units = 16
+debug = false
+lto = "thin"
+
+[profile.bench]
+inherits = "release"
+EOF
+  floating=false
+  [ "$base" = free ] && floating=true
+  cat > "$CRATE/src/lib.rs" <<EOF
+//! Written by public.sh: $robot from example-robot-data, as a user would declare it.
+dynamics_runtime::mechanism! {
+    /// $robot (example-robot-data), joint damping and friction removed.
+    pub struct Robot;
+    urdf: "$(realpath "$urdf")";
+    floating_base: $floating;
+    outputs: [$OUTPUTS];
+}
+EOF
+  [ -f "$CRATE/Cargo.lock" ] || cp "$ROOT/Cargo.lock" "$CRATE/Cargo.lock"
+  step "$robot: building the generated code and its benchmark"
+  START=$(date +%s)
+  cargo bench -q --manifest-path "$CRATE/Cargo.toml" --bench public --no-run 2> "$CRATE/cargo.log" ||
+    { tail -30 "$CRATE/cargo.log" >&2; fail "$robot's crate does not build (log: $CRATE/cargo.log)"; }
+  echo "    built in $(( $(date +%s) - START )) s" >&2
+
+  LOAD="$(cut -d' ' -f1-3 /proc/loadavg)"
+  step "$robot: Pinocchio (load average $LOAD)"
+  printf '%s\tpinocchio\t%s\n' "$robot" "$LOAD" >> "$OUT/load.tsv"
+  for group in dynamics kinematics; do
+    "$HERE/build/timing" "${PIN_ARGS[@]}" --group "$group" "$OUT/$robot.json" >> "$OUT/pinocchio.tsv" ||
+      fail "the timing program failed on $robot.json"
+  done
+  LOAD="$(cut -d' ' -f1-3 /proc/loadavg)"
+  step "$robot: generated code (load average $LOAD)"
+  printf '%s\tgenerated\t%s\n' "$robot" "$LOAD" >> "$OUT/load.tsv"
+  find "$CRATE/target/criterion" -type d -name "$BASELINE" -prune -exec rm -rf {} + 2>/dev/null || true
+  PUBLIC_ROBOT="$robot" PUBLIC_ROBOT_JSON="$OUT/$robot.json" \
+    cargo bench -q --manifest-path "$CRATE/Cargo.toml" --bench public -- \
+    "${CRIT_ARGS[@]}" --save-baseline "$BASELINE" >> "$OUT/criterion.log" 2>&1 ||
+    { tail -30 "$OUT/criterion.log" >&2; fail "$robot's benchmark failed (log: $OUT/criterion.log)"; }
+done < "$OUT/robots.tsv"
+
+step "joining the results"
+CPU="$(LC_ALL=C lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1)"
+"$VENV/bin/python" - "$OUT" "$BASELINE" "$CPU" "$(nproc)" "$QUICK" "$(rustc --version)" \
+  "$(g++ --version | head -1)" <<'PYTHON' || fail "could not join the two sides' results"
+import json, os, re, sys
+
+out_dir, baseline, cpu, cores, quick, rustc, gxx = sys.argv[1:]
+# Pinocchio's call (the faster of its conventions where it has two) beside ours.
+ROWS = [("rnea", ["rnea"], "inverse_dynamics"),
+        ("crba", ["crba", "crba_world"], "mass_matrix"),
+        ("aba", ["aba", "aba_world"], "forward_dynamics"),
+        ("forwardKinematics(q)", ["forwardKinematics_q"], "joint_placements"),
+        ("forwardKinematics(q, v, a)", ["forwardKinematics_qva"],
+         "joint_velocities+joint_acceleration_biases"),
+        ("computeJointJacobians", ["computeJointJacobians"], "joint_jacobians_world"),
+        ("computeJointJacobians + getJointJacobian × all joints",
+         ["computeJointJacobians_getJointJacobian"], "joint_jacobians"),
+        ("computeJointJacobiansTimeVariation", ["computeJointJacobiansTimeVariation"],
+         "joint_jacobians_world_time_variation"),
+        ("centerOfMass", ["centerOfMass"], "center_of_mass"),
+        ("jacobianCenterOfMass", ["jacobianCenterOfMass"], "center_of_mass_jacobian"),
+        ("ccrba", ["ccrba"], "centroidal_momentum_matrix")]
+
+robots, pin, pin_states, header = [], {}, {}, ""
+for line in open(os.path.join(out_dir, "robots.tsv")):
+    robots.append(line.split("\t")[:3])
+for line in open(os.path.join(out_dir, "pinocchio.tsv")):
+    f = line.rstrip("\n").split("\t")
+    if line.startswith("#"):
+        header = line[1:].strip()
+    elif f[0] == "states":
+        pin_states[f[1]] = f[3]
+    elif f[0] == "time":
+        pin[(f[1], f[2])] = float(f[3])
+log = open(os.path.join(out_dir, "criterion.log")).read()
+ours_states = {m.group(1): m.group(3)
+               for m in re.finditer(r"^states (\w+) (\d+) ([0-9a-f]{16})", log, re.M)}
+loads = {}
+for line in open(os.path.join(out_dir, "load.tsv")):
+    robot, side, load = line.rstrip("\n").split("\t")
+    loads[(robot, side)] = load.split()[0]
+ours = {}
+for robot, _, _ in robots:
+    criterion = os.path.join(out_dir, robot, "target", "criterion")
+    for directory, _, files in os.walk(criterion):
+        if os.path.basename(directory) == baseline and "estimates.json" in files:
+            bench = json.load(open(os.path.join(directory, "benchmark.json")))
+            estimates = json.load(open(os.path.join(directory, "estimates.json")))
+            ours[bench["full_id"]] = estimates["median"]["point_estimate"]
+
+problems, lines = [], []
+for robot, nq, nv in robots:
+    if pin_states.get(robot) is None or pin_states.get(robot) != ours_states.get(robot):
+        problems.append(f"{robot}: the states differ ({pin_states.get(robot)}, {ours_states.get(robot)})")
+    for call, variants, function in ROWS:
+        times = [(pin[(robot, v)], v) for v in variants if (robot, v) in pin]
+        o = ours.get(f"{robot}/{function}/generated")
+        if not times or o is None:
+            problems.append(f"{robot} {call}: no timing")
+            continue
+        p, variant = min(times)
+        note = " (WORLD)" if variant.endswith("_world") else ""
+        lines.append(f"| {robot} ({nv} dof) | {call}{note} | {function.replace('+', ' + ')} "
+                     f"| {o:.1f} | {p:.1f} | {p / o:.1f}× |")
+if problems:
+    print("public.sh: " + "; ".join(problems), file=sys.stderr)
+    sys.exit(1)
+text = [f"Machine: {cpu}, {cores} cores. 1-minute load average when each side started "
+        "(Pinocchio/generated): "
+        + ", ".join(f"{r} {loads.get((r, 'pinocchio'), '?')}/{loads.get((r, 'generated'), '?')}"
+                    for r, _, _ in robots) + ".",
+        f"{header}; {gxx}. Generated code: {rustc}, baseline x86-64, criterion median of flat samples.",
+        "QUICK RUN (--quick): short measurements, not for figures." if quick == "1" else "",
+        "",
+        "| robot | Pinocchio | ours | ours ns | Pinocchio ns | speedup |",
+        "| --- | --- | --- | ---: | ---: | ---: |"] + lines + [
+        "",
+        "Same outputs on both sides, checked at every state before timing (1e-10 relative), except",
+        "forwardKinematics(q, v, a), which also gives every joint's acceleration for a (ours: v and J̇v).",
+        "computeJointJacobians and joint_jacobians_world give one 6 × nv matrix (WORLD); the row with",
+        "getJointJacobian gives every joint's own Jacobian (LOCAL_WORLD_ALIGNED), as joint_jacobians does."]
+text = "\n".join(line for line in text if line is not None)
+print(text)
+open(os.path.join(out_dir, "comparison.md"), "w").write(text + "\n")
+PYTHON

@@ -1,0 +1,228 @@
+//! The generated code of one example-robot-data robot, timed for `public.sh`.
+//!
+//! `public.sh` builds this benchmark in a throwaway crate (`build/public/<robot>/`) whose
+//! library is one declaration, `mechanism! { pub struct Robot; urdf: "<robot>.urdf"; .. }`,
+//! of a URDF installed at benchmark time: the code generator never saw the robot before.
+//! It reads the states and Pinocchio's outputs from the JSON file named by
+//! `PUBLIC_ROBOT_JSON` (written by `public_robots.py`), checks every timed output against
+//! Pinocchio's at every state (max |Δ| / (1 + max |Pinocchio|) ≤ 1e-10: the same model and
+//! the same numbers, or the benchmark stops), prints the states' fingerprint (matched by
+//! `public.sh` against the timing program's), then times each output as `benches/dynamics.rs`
+//! does: one call per state, the states in turn, `<robot>/<output>/generated`.
+
+use criterion::{criterion_group, criterion_main, Criterion, SamplingMode};
+use dynamics_runtime::Mechanism;
+use public_robot::Robot;
+use serde_json::Value;
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+const NQ: usize = <Robot as Mechanism>::NQ;
+const NV: usize = <Robot as Mechanism>::NV;
+
+/// One state: q, v, a and τ.
+struct State {
+    q: [f64; NQ],
+    v: [f64; NV],
+    a: [f64; NV],
+    tau: [f64; NV],
+}
+
+fn numbers(value: &Value, what: &str) -> Vec<f64> {
+    value
+        .as_array()
+        .unwrap_or_else(|| panic!("{what}: not an array"))
+        .iter()
+        .map(|x| x.as_f64().unwrap_or_else(|| panic!("{what}: not a number")))
+        .collect()
+}
+
+fn rows(value: &Value, what: &str) -> Vec<f64> {
+    value
+        .as_array()
+        .unwrap_or_else(|| panic!("{what}: not an array of rows"))
+        .iter()
+        .flat_map(|row| numbers(row, what))
+        .collect()
+}
+
+fn array<const N: usize>(value: &Value, what: &str) -> [f64; N] {
+    numbers(value, what)
+        .try_into()
+        .unwrap_or_else(|v: Vec<f64>| panic!("{what}: {} numbers, the robot has {N}", v.len()))
+}
+
+/// Generated against Pinocchio: max |Δ| / (1 + max |Pinocchio|) ≤ 1e-10.
+fn check(what: &str, sample: usize, generated: &[f64], pinocchio: &[f64]) {
+    assert_eq!(generated.len(), pinocchio.len(), "{what}: sizes");
+    let scale = 1.0 + pinocchio.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let error = generated
+        .iter()
+        .zip(pinocchio)
+        .fold(0.0_f64, |m, (g, p)| m.max((g - p).abs()))
+        / scale;
+    assert!(
+        error <= 1e-10,
+        "sample {sample}: {what} differs from Pinocchio's by {error:.1e} (relative): not the \
+         same model (joint order? merged links?)"
+    );
+}
+
+/// The states, after checking every timed output against Pinocchio's at each.
+fn states(path: &str) -> Vec<State> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let file: Value = serde_json::from_str(&text).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let samples = file["samples"]
+        .as_array()
+        .unwrap_or_else(|| panic!("{path}: no samples"));
+    let mut out = Vec::with_capacity(samples.len());
+    for (k, s) in samples.iter().enumerate() {
+        let state = State {
+            q: array(&s["q"], "q"),
+            v: array(&s["v"], "v"),
+            a: array(&s["a"], "a"),
+            tau: array(&s["tau"], "tau"),
+        };
+        let (q, v, a, tau) = (&state.q, &state.v, &state.a, &state.tau);
+        check(
+            "inverse dynamics",
+            k,
+            &Robot::inverse_dynamics(q, v, a),
+            &numbers(&s["rnea"], "rnea"),
+        );
+        check(
+            "M",
+            k,
+            Robot::mass_matrix(q).as_flattened(),
+            &rows(&s["crba"], "crba"),
+        );
+        check(
+            "forward dynamics",
+            k,
+            &Robot::forward_dynamics(q, v, tau),
+            &numbers(&s["aba"], "aba"),
+        );
+        let placements = Robot::joint_placements(q);
+        let stored = s["joint_placements"].as_array().expect("joint_placements");
+        assert_eq!(
+            placements.len(),
+            stored.len(),
+            "one body per Pinocchio joint"
+        );
+        for (b, ((rotation, origin), p)) in placements.iter().zip(stored).enumerate() {
+            let what = format!("body {b}'s placement");
+            check(
+                &what,
+                k,
+                rotation.as_flattened(),
+                &rows(&p["rotation"], "rotation"),
+            );
+            check(&what, k, origin, &numbers(&p["translation"], "translation"));
+        }
+        let world = rows(&s["joint_jacobians_world_pinocchio"], "data.J");
+        check(
+            "data.J",
+            k,
+            Robot::joint_jacobians_world(q).as_flattened(),
+            &world,
+        );
+        let (j, j_dot) = Robot::joint_jacobians_world_time_variation(q, v);
+        check("data.J", k, j.as_flattened(), &world);
+        let rate = rows(
+            &s["joint_jacobians_world_time_variation_pinocchio"],
+            "data.dJ",
+        );
+        check("data.dJ", k, j_dot.as_flattened(), &rate);
+        let com = numbers(&s["center_of_mass"], "com");
+        check("centre of mass", k, &Robot::center_of_mass(q), &com);
+        let jacobian = rows(&s["com_jacobian"], "Jcom");
+        check(
+            "CoM Jacobian",
+            k,
+            Robot::center_of_mass_jacobian(q).as_flattened(),
+            &jacobian,
+        );
+        let centroidal = rows(&s["centroidal_momentum_matrix"], "Ag");
+        check(
+            "A_G",
+            k,
+            Robot::centroidal_momentum_matrix(q).as_flattened(),
+            &centroidal,
+        );
+        out.push(state);
+    }
+    assert!(!out.is_empty(), "{path}: no samples");
+    out
+}
+
+/// FNV-1a over the bits of q, v, a, τ, state by state (as the timing program's).
+fn fingerprint(states: &[State]) -> u64 {
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    for s in states {
+        for x in s.q.iter().chain(&s.v).chain(&s.a).chain(&s.tau) {
+            for byte in x.to_bits().to_le_bytes() {
+                hash = (hash ^ u64::from(byte)).wrapping_mul(0x0000_0100_0000_01b3);
+            }
+        }
+    }
+    hash
+}
+
+/// Total time of `iters` calls, one per state, the states in turn; the result kept by
+/// reference (as `benches/dynamics.rs`).
+fn cycle<R>(states: &[State], iters: u64, mut call: impl FnMut(&State) -> R) -> Duration {
+    let mut k = 0;
+    let start = Instant::now();
+    for _ in 0..iters {
+        let result = call(black_box(&states[k]));
+        black_box(&result);
+        k = if k + 1 == states.len() { 0 } else { k + 1 };
+    }
+    start.elapsed()
+}
+
+macro_rules! timed {
+    ($group:ident, $states:ident, $($name:literal => |$s:ident| $call:expr),* $(,)?) => {
+        $(
+            $group.bench_function(concat!($name, "/generated"), |b| {
+                b.iter_custom(|iters| cycle(&$states, iters, |$s| $call))
+            });
+        )*
+    };
+}
+
+fn public(c: &mut Criterion) {
+    let path = std::env::var("PUBLIC_ROBOT_JSON")
+        .expect("PUBLIC_ROBOT_JSON names the robot's file (public.sh sets it)");
+    let name = std::env::var("PUBLIC_ROBOT").unwrap_or_else(|_| "robot".to_owned());
+    let states = states(&path);
+    println!(
+        "states {name} {} {:016x}",
+        states.len(),
+        fingerprint(&states)
+    );
+    let mut group = c.benchmark_group(name);
+    group.sampling_mode(SamplingMode::Flat);
+    timed!(group, states,
+        "inverse_dynamics" => |s| Robot::inverse_dynamics(&s.q, &s.v, &s.a),
+        "mass_matrix" => |s| Robot::mass_matrix(&s.q),
+        "forward_dynamics" => |s| Robot::forward_dynamics(&s.q, &s.v, &s.tau),
+        "joint_placements" => |s| Robot::joint_placements(&s.q),
+        "joint_velocities+joint_acceleration_biases" => |s| (
+            Robot::joint_velocities(&s.q, &s.v),
+            Robot::joint_acceleration_biases(&s.q, &s.v),
+        ),
+        "joint_jacobians_world" => |s| Robot::joint_jacobians_world(&s.q),
+        "joint_jacobians" => |s| Robot::joint_jacobians(&s.q),
+        "joint_jacobians_world_time_variation" => |s| {
+            Robot::joint_jacobians_world_time_variation(&s.q, &s.v)
+        },
+        "center_of_mass" => |s| Robot::center_of_mass(&s.q),
+        "center_of_mass_jacobian" => |s| Robot::center_of_mass_jacobian(&s.q),
+        "centroidal_momentum_matrix" => |s| Robot::centroidal_momentum_matrix(&s.q),
+    );
+    group.finish();
+}
+
+criterion_group!(benches, public);
+criterion_main!(benches);
