@@ -10,7 +10,10 @@
 //!   and both Jacobians against central finite differences of the generated placements and
 //!   centre of mass along q ⊕ δ (the free base moved on its manifold by
 //!   `integrate_configuration`), J̇ v against central differences of J v along the motion,
-//!   and A_G q̇ against the bodies' momentum summed from the placements and Jacobians.
+//!   and A_G q̇ against the bodies' momentum summed from the placements and Jacobians;
+//! - `forward_kinematics(q, v, a)` on all six: its placements and velocities are those of
+//!   `joint_placements` and `joint_velocities`, its accelerations J a + J̇ v from
+//!   `joint_jacobians` and `joint_acceleration_biases` (the three checked above).
 
 use dynamics_runtime::{mechanism, Mechanism, Reference};
 use dynamics_tests::free_tree;
@@ -19,39 +22,39 @@ use serde::Deserialize;
 mechanism! {
     pub struct PendulumKinematics;
     urdf: "../models/urdf/pendulum.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics];
 }
 
 mechanism! {
     pub struct DoublePendulumKinematics;
     urdf: "../models/urdf/double_pendulum.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics];
 }
 
 mechanism! {
     pub struct Planar3Kinematics;
     urdf: "../models/urdf/planar3.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics];
     allow: [triangle_inequality];
 }
 
 mechanism! {
     pub struct Ur5Kinematics;
     urdf: "../models/urdf/ur5.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics];
 }
 
 mechanism! {
     pub struct PandaKinematics;
     urdf: "../models/urdf/panda.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics];
 }
 
 mechanism! {
     /// A free-floating base with two branches, one ending in a slider; offset mass centres
     /// and a rotated placement, so that no term vanishes by symmetry.
     pub struct FreeTreeKinematics;
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics];
     body base { mass: 3.0, com: [0.01, 0.02, -0.03], inertia: [[0.1, 0.01, 0.0], [0.01, 0.12, 0.02], [0.0, 0.02, 0.09]] }
     body left { mass: 1.0, com: [0.1, 0.0, 0.0], shape: rod(length: 0.2, axis: x) }
     body right { mass: 0.7, com: [0.0, 0.05, 0.01], shape: box(size: [0.05, 0.1, 0.02]) }
@@ -506,5 +509,106 @@ fn acceleration_biases_of_a_free_tree_are_the_rate_of_the_jacobians() {
                 );
             }
         }
+    }
+}
+
+/// `forward_kinematics`: placements, velocities and accelerations at (q, v, a).
+type ForwardKinematics<const NQ: usize, const NV: usize, const NB: usize> =
+    fn(&[f64; NQ], &[f64; NV], &[f64; NV]) -> (Placements<NB>, Twists<NB>, Twists<NB>);
+
+/// `joint_placements`, `joint_velocities`, `joint_jacobians`, `joint_acceleration_biases`.
+type SingleOutputs<const NQ: usize, const NV: usize, const NB: usize> = (
+    fn(&[f64; NQ]) -> Placements<NB>,
+    fn(&[f64; NQ], &[f64; NV]) -> Twists<NB>,
+    fn(&[f64; NQ]) -> [[[f64; NV]; 6]; NB],
+    fn(&[f64; NQ], &[f64; NV]) -> Twists<NB>,
+);
+
+/// `forward_kinematics(q, v, a)` of one mechanism against the single outputs at a state.
+fn check_forward_kinematics<const NQ: usize, const NV: usize, const NB: usize>(
+    name: &str,
+    (q, v, a): (&[f64; NQ], &[f64; NV], &[f64; NV]),
+    forward: ForwardKinematics<NQ, NV, NB>,
+    singles: SingleOutputs<NQ, NV, NB>,
+) {
+    let (poses, twists, accelerations) = forward(q, v, a);
+    let (placements, velocities, jacobians, biases) = singles;
+    let (poses_alone, twists_alone) = (placements(q), velocities(q, v));
+    let (jacobian, bias) = (jacobians(q), biases(q, v));
+    for b in 0..NB {
+        for r in 0..3 {
+            assert_close(poses[b].1[r], poses_alone[b].1[r], &|| {
+                format!("{name} p[{b}][{r}]")
+            });
+            for c in 0..3 {
+                let what = || format!("{name} R[{b}][{r}][{c}]");
+                assert_close(poses[b].0[r][c], poses_alone[b].0[r][c], &what);
+            }
+        }
+        for r in 0..6 {
+            assert_close(twists[b][r], twists_alone[b][r], &|| {
+                format!("{name} velocity[{b}][{r}]")
+            });
+            let expected = bias[b][r] + (0..NV).map(|c| jacobian[b][r][c] * a[c]).sum::<f64>();
+            assert_close(accelerations[b][r], expected, &|| {
+                format!("{name} acceleration[{b}][{r}]")
+            });
+        }
+    }
+}
+
+macro_rules! forward_kinematics_of {
+    ($m:ident, $name:expr, $q:expr, $v:expr, $a:expr) => {
+        check_forward_kinematics(
+            $name,
+            ($q, $v, $a),
+            $m::forward_kinematics,
+            (
+                $m::joint_placements,
+                $m::joint_velocities,
+                $m::joint_jacobians,
+                $m::joint_acceleration_biases,
+            ),
+        )
+    };
+}
+
+/// At Pinocchio's sampled q and v of the anchors, with an acceleration of our own, and at
+/// the free tree's states.
+#[test]
+fn forward_kinematics_is_the_placements_velocities_and_accelerations() {
+    fn arrays<const NQ: usize, const NV: usize>(s: &Sample) -> ([f64; NQ], [f64; NV], [f64; NV]) {
+        let q: [f64; NQ] = s.q.clone().try_into().expect("nq matches");
+        let v: [f64; NV] = s.v.clone().try_into().expect("nv matches");
+        let a: [f64; NV] = std::array::from_fn(|i| (1.3 * i as f64 + q[0]).sin());
+        (q, v, a)
+    }
+    for s in samples("pendulum") {
+        let (q, v, a) = arrays(&s);
+        forward_kinematics_of!(PendulumKinematics, "pendulum", &q, &v, &a);
+    }
+    for s in samples("double_pendulum") {
+        let (q, v, a) = arrays(&s);
+        forward_kinematics_of!(DoublePendulumKinematics, "double_pendulum", &q, &v, &a);
+    }
+    for s in samples("planar3") {
+        let (q, v, a) = arrays(&s);
+        forward_kinematics_of!(Planar3Kinematics, "planar3", &q, &v, &a);
+    }
+    for s in samples("ur5") {
+        let (q, v, a) = arrays(&s);
+        forward_kinematics_of!(Ur5Kinematics, "ur5", &q, &v, &a);
+    }
+    for s in samples("panda") {
+        let (q, v, a) = arrays(&s);
+        forward_kinematics_of!(PandaKinematics, "panda", &q, &v, &a);
+    }
+    for k in 0..6 {
+        let (q, v, a) = (
+            free_tree::configuration(k),
+            free_tree::velocity(k),
+            free_tree::acceleration(k),
+        );
+        forward_kinematics_of!(FreeTreeKinematics, "free tree", &q, &v, &a);
     }
 }

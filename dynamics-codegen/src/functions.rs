@@ -18,6 +18,7 @@
 //! | `centroidal_momentum_matrix(q)` | A_G: momentum and angular momentum about the centre of mass (asked for by name) | [`kinematics`] |
 //! | `joint_velocities(q, v)`, `joint_acceleration_biases(q, v)` | each body's [v_P; ω] and J̇ q̇, world axes at its origin (asked for by name) | [`kinematics`] + [`rnea`]'s forward sweep |
 //! | `joint_placements(q)`, `joint_jacobians(q)` | each body's (R, p) in the world and its 6 × nv Jacobian, world-aligned at its origin (asked for by name) | [`kinematics`] |
+//! | `forward_kinematics(q, v, a)` | each body's (R, p), [v_P; ω] and classical [a_P; α] in world axes (asked for by name) | [`kinematics`] |
 //! | `joint_jacobians_world(q)`, `joint_jacobians_world_time_variation(q, v)` | all joint Jacobians in one 6 × nv matrix, WORLD convention (Pinocchio's `data.J`), and its rate J̇ (asked for by name) | [`kinematics`] |
 //! | `frame_placements(q)`, `frame_jacobians(q)`, `frame_jacobians_local(q)` | each operational frame's (R, p) in the world and its 6 × nv Jacobian, world-aligned at its origin or in its own axes (asked for by name) | [`frames`] |
 //! | `frame_velocities(q, v)`, `frame_acceleration_biases(q, v)` | each operational frame's [v; ω] and J̇ q̇, world axes at its origin (asked for by name) | [`frames`] + [`rnea`]'s forward sweep |
@@ -195,6 +196,13 @@ pub(crate) const CATALOG: &[Entry] = &[
         arrays: &[Array::Q, Array::V],
         loads: false,
         expand: joint_jacobians_world_time_variation,
+    },
+    Entry {
+        name: "forward_kinematics",
+        wanted: |m| m.outputs.forward_kinematics && m.nv > 0,
+        arrays: &[Array::Q, Array::V, Array::A],
+        loads: false,
+        expand: forward_kinematics,
     },
     Entry {
         name: "joint_velocities",
@@ -890,6 +898,36 @@ fn joint_jacobians_world_time_variation(model: &Model) -> Expanded {
               `data.dJ` after `computeJointJacobiansTimeVariation`). Column k of J̇ is \
               V_j × J[:, k], the motion cross product with the spatial velocity V_j of \
               coordinate k's body (world axes, at the world origin)."
+            .to_owned(),
+    }
+}
+
+fn forward_kinematics(model: &Model) -> Expanded {
+    let (g, t, _) = fresh_graph(model);
+    let v = inputs(&g, Array::V, model.nv);
+    let a = inputs(&g, Array::A, model.nv);
+    let placements = kinematics::body_poses(&g, model, &t)
+        .iter()
+        .map(pose_output)
+        .collect();
+    let velocities = six_vectors(kinematics::body_velocities(&g, model, &t, &v));
+    let accelerations = six_vectors(
+        kinematics::motions_in_world(&g, model, &t, &v, &a)
+            .into_iter()
+            .map(|m| (m.accel, m.alpha)),
+    );
+    Expanded {
+        graph: g,
+        output: Output::Tuple(vec![
+            Output::Stack(placements),
+            Output::Stack(velocities),
+            Output::Stack(accelerations),
+        ]),
+        doc: "Every body's placement, velocity and acceleration at (q, v, a), indexed like \
+              `BODY_NAMES` (what Pinocchio's `forwardKinematics(q, v, a)` gives): the poses \
+              (R, p) of `joint_placements`, the velocities [v_P; ω] of `joint_velocities` and \
+              the classical accelerations [a_P; α] of each body's origin, world axes, \
+              without gravity (J q̈ + J̇ q̇; at q̈ = 0 those of `joint_acceleration_biases`)."
             .to_owned(),
     }
 }

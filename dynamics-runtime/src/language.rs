@@ -109,6 +109,7 @@
 //! | `joint_jacobians` | per body, J (6 × nv, rows [linear; angular]) with [v_P; ω] = J q̇ at the body origin in world axes (Pinocchio's `LOCAL_WORLD_ALIGNED`) | `q` | `[[[T; NV]; 6]; NB]` |
 //! | `joint_jacobians_world` | every joint's Jacobian in one matrix, Pinocchio's WORLD convention (its `data.J`): column k is the motion [v_O; ω] coordinate k gives its body, v_O the velocity of the body point at the world origin; body i's WORLD Jacobian is the columns of the joints from the root to i | `q` | `[[T; NV]; 6]` |
 //! | `joint_jacobians_world_time_variation` | (J, J̇): that matrix and its time derivative along v (Pinocchio's `data.J`, `data.dJ`) | `q, v` | `([[T; NV]; 6], [[T; NV]; 6])` |
+//! | `forward_kinematics` | per body, its pose (R, p), velocity [v_P; ω] and classical acceleration [a_P; α] (world axes, without gravity) at (q, v, a): what Pinocchio's `forwardKinematics(q, v, a)` gives | `q, v, a` | `([([[T; 3]; 3], [T; 3]); NB], [[T; 6]; NB], [[T; 6]; NB])` |
 //! | `joint_velocities` | per body, [v_P; ω] = J q̇, world axes | `q, v` | `[[T; 6]; NB]` |
 //! | `joint_acceleration_biases` | per body, J̇ q̇: the classical acceleration [a_P; α] at q̈ = 0 without gravity, world axes | `q, v` | `[[T; 6]; NB]` |
 //! | `center_of_mass` | c, world frame | `q` | `[T; 3]` |

@@ -704,13 +704,14 @@ fn check_kinematics<const NQ: usize, const NV: usize, const NB: usize>(
 
 /// The kinematics outputs timed, each alone: `<Name>/<output>/generated` (`compare.sh`
 /// pairs each with its Pinocchio call).
-const KINEMATICS: [&str; 16] = [
+const KINEMATICS: [&str; 17] = [
     "joint_placements",
     "joint_velocities",
     "joint_acceleration_biases",
     "joint_jacobians",
     "joint_jacobians_world",
     "joint_jacobians_world_time_variation",
+    "forward_kinematics",
     "center_of_mass",
     "center_of_mass_jacobian",
     "centroidal_momentum_matrix",
@@ -736,6 +737,9 @@ macro_rules! kinematics_call {
     };
     ($m:ty, joint_jacobians_world_time_variation, $s:ident) => {
         <$m>::joint_jacobians_world_time_variation(&$s.q, &$s.v)
+    };
+    ($m:ty, forward_kinematics, $s:ident) => {
+        <$m>::forward_kinematics(&$s.q, &$s.v, &$s.a)
     };
     ($m:ty, joint_velocities, $s:ident) => {
         <$m>::joint_velocities(&$s.q, &$s.v)
@@ -802,7 +806,8 @@ macro_rules! bench_kinematics {
             group.sampling_mode(SamplingMode::Flat);
             bench_kinematics!(@each group, $m, states, [
                 joint_placements, joint_velocities, joint_acceleration_biases, joint_jacobians,
-                joint_jacobians_world, joint_jacobians_world_time_variation, center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix,
+                joint_jacobians_world, joint_jacobians_world_time_variation, forward_kinematics,
+                center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix,
                 frame_placements, frame_jacobians, frame_acceleration_biases, centroidal_bias,
                 inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse,
             ]);

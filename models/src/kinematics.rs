@@ -31,7 +31,7 @@ mechanism! {
     urdf: "urdf/ur5.urdf";
     gravity: [0.0, 0.0, -9.81];
     outputs: [joint_placements, joint_jacobians, joint_velocities, joint_acceleration_biases,
-              joint_jacobians_world, joint_jacobians_world_time_variation,
+              joint_jacobians_world, joint_jacobians_world_time_variation, forward_kinematics,
               center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix,
               frame_placements, frame_jacobians, frame_acceleration_biases, centroidal_bias,
               inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse];
@@ -47,7 +47,7 @@ mechanism! {
     urdf: "urdf/panda.urdf";
     gravity: [0.0, 0.0, -9.81];
     outputs: [joint_placements, joint_jacobians, joint_velocities, joint_acceleration_biases,
-              joint_jacobians_world, joint_jacobians_world_time_variation,
+              joint_jacobians_world, joint_jacobians_world_time_variation, forward_kinematics,
               center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix,
               frame_placements, frame_jacobians, frame_acceleration_biases, centroidal_bias,
               inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse];
@@ -63,7 +63,7 @@ mechanism! {
     pub struct QuadrupedKinematics;
     gravity: [0.0, 0.0, -9.81];
     outputs: [joint_placements, joint_jacobians, joint_velocities, joint_acceleration_biases,
-              joint_jacobians_world, joint_jacobians_world_time_variation,
+              joint_jacobians_world, joint_jacobians_world_time_variation, forward_kinematics,
               center_of_mass, center_of_mass_jacobian, centroidal_momentum_matrix,
               frame_placements, frame_jacobians, frame_acceleration_biases, centroidal_bias,
               inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse];

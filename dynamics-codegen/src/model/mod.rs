@@ -69,6 +69,8 @@ pub struct Outputs {
     pub joint_jacobians_world_time_variation: bool,
     /// The centroidal momentum matrix A_G.
     pub centroidal_momentum_matrix: bool,
+    /// Every body frame's pose, velocity and acceleration at (q, v, a).
+    pub forward_kinematics: bool,
     /// Every body frame's velocity [v_P; ω], world-aligned at its origin.
     pub joint_velocities: bool,
     /// Every body frame's J̇ q̇, world-aligned at its origin.
@@ -97,7 +99,7 @@ impl Outputs {
     /// The output names the language accepts: the names of the functions they generate
     /// (`kinetic_energy` and `potential_energy` come together, as do the three constraint
     /// functions).
-    pub const NAMES: [&'static str; 33] = [
+    pub const NAMES: [&'static str; 34] = [
         "inverse_dynamics",
         "gravity",
         "bias",
@@ -120,6 +122,7 @@ impl Outputs {
         "joint_jacobians_world",
         "joint_jacobians_world_time_variation",
         "centroidal_momentum_matrix",
+        "forward_kinematics",
         "joint_velocities",
         "joint_acceleration_biases",
         "frame_placements",
@@ -165,6 +168,7 @@ impl Outputs {
             joint_jacobians_world: false,
             joint_jacobians_world_time_variation: false,
             centroidal_momentum_matrix: false,
+            forward_kinematics: false,
             joint_velocities: false,
             joint_acceleration_biases: false,
             frame_placements: false,
@@ -222,6 +226,7 @@ impl Outputs {
                 &mut self.joint_jacobians_world_time_variation
             }
             "centroidal_momentum_matrix" => &mut self.centroidal_momentum_matrix,
+            "forward_kinematics" => &mut self.forward_kinematics,
             "joint_velocities" => &mut self.joint_velocities,
             "joint_acceleration_biases" => &mut self.joint_acceleration_biases,
             "frame_placements" => &mut self.frame_placements,

@@ -27,6 +27,7 @@
 # no external forces.
 # Kinematics: each Pinocchio call beside the generated function(s) a user would call
 # instead (models/src/kinematics.rs): forwardKinematics(q) ~ joint_placements;
+# forwardKinematics(q, v, a) ~ forward_kinematics (placements, velocities, accelerations);
 # computeJointJacobians ~ joint_jacobians_world (both give data.J, WORLD);
 # computeJointJacobiansTimeVariation ~ joint_jacobians_world_time_variation (data.J, data.dJ);
 # forwardKinematics(q, v, a) ~ joint_velocities + joint_acceleration_biases (ours gives
@@ -94,7 +95,7 @@ done
 # The generated kinematics benchmarks (benches/dynamics.rs), as a regex alternation: each
 # function alone, and the pairs timed as one call each.
 KIN_OUTPUTS='joint_placements|joint_velocities|joint_acceleration_biases|joint_jacobians'
-KIN_OUTPUTS+='|joint_jacobians_world|joint_jacobians_world_time_variation'
+KIN_OUTPUTS+='|joint_jacobians_world|joint_jacobians_world_time_variation|forward_kinematics'
 KIN_OUTPUTS+='|joint_velocities\+joint_acceleration_biases|joint_jacobians\+joint_acceleration_biases'
 KIN_OUTPUTS+='|center_of_mass|center_of_mass_jacobian|centroidal_momentum_matrix'
 KIN_OUTPUTS+='|frame_placements|frame_jacobians|frame_acceleration_biases|centroidal_bias'
@@ -257,6 +258,7 @@ ROBOTS = {"ur5", "panda", "quadruped"}
 # calling both), whether it must exist on our side, and whether it is a frame row (left out
 # for a model without frames on Pinocchio's side).
 KIN_ROWS = [("forwardKinematics(q)", "forwardKinematics_q", "joint_placements", True, False),
+            ("forwardKinematics(q, v, a)", "forwardKinematics_qva", "forward_kinematics", True, False),
             ("forwardKinematics(q, v, a)", "forwardKinematics_qva",
              "joint_velocities+joint_acceleration_biases", True, False),
             ("computeJointJacobians", "computeJointJacobians", "joint_jacobians_world", True, False),

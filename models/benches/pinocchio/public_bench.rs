@@ -119,6 +119,27 @@ fn states(path: &str) -> Vec<State> {
             );
             check(&what, k, origin, &numbers(&p["translation"], "translation"));
         }
+        let (poses, twists, accelerations) = Robot::forward_kinematics(q, v, a);
+        let stored_twists = s["joint_velocities_world"].as_array().expect("velocities");
+        let stored_accelerations = s["joint_classical_accelerations_world"]
+            .as_array()
+            .expect("accelerations");
+        for b in 0..placements.len() {
+            check(
+                "forward_kinematics placement",
+                k,
+                poses[b].0.as_flattened(),
+                placements[b].0.as_flattened(),
+            );
+            check(
+                "body velocity",
+                k,
+                &twists[b],
+                &numbers(&stored_twists[b], "velocity"),
+            );
+            let expected = numbers(&stored_accelerations[b], "acceleration");
+            check("body acceleration", k, &accelerations[b], &expected);
+        }
         let world = rows(&s["joint_jacobians_world_pinocchio"], "data.J");
         check(
             "data.J",
@@ -208,10 +229,7 @@ fn public(c: &mut Criterion) {
         "mass_matrix" => |s| Robot::mass_matrix(&s.q),
         "forward_dynamics" => |s| Robot::forward_dynamics(&s.q, &s.v, &s.tau),
         "joint_placements" => |s| Robot::joint_placements(&s.q),
-        "joint_velocities+joint_acceleration_biases" => |s| (
-            Robot::joint_velocities(&s.q, &s.v),
-            Robot::joint_acceleration_biases(&s.q, &s.v),
-        ),
+        "forward_kinematics" => |s| Robot::forward_kinematics(&s.q, &s.v, &s.a),
         "joint_jacobians_world" => |s| Robot::joint_jacobians_world(&s.q),
         "joint_jacobians" => |s| Robot::joint_jacobians(&s.q),
         "joint_jacobians_world_time_variation" => |s| {

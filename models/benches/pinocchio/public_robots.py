@@ -12,7 +12,8 @@ For each robot NAME of ROBOTS it writes, into OUT_DIR:
     bodies with the inertia Pinocchio merged into each joint), and 20 seeded states with
     Pinocchio's outputs at them: rnea, crba, aba, nle and gravity (timing checks its own
     model against them) and the kinematics the generated code is checked against before it
-    is timed (oMi, data.J, data.dJ, the centre of mass, its Jacobian, A_g).
+    is timed (oMi, the joints' velocities and classical accelerations at (q, v, a) in
+    LOCAL_WORLD_ALIGNED, data.J, data.dJ, the centre of mass, its Jacobian, A_g).
 
 Nothing of example-robot-data is committed: the package is installed at benchmark time.
 """
@@ -135,8 +136,14 @@ def sample(model, data, q, v, a, tau):
     pin.computeJointJacobiansTimeVariation(model, data, q, v)
     out["joint_jacobians_world_pinocchio"] = rows(data.J)
     out["joint_jacobians_world_time_variation_pinocchio"] = rows(data.dJ)
-    pin.forwardKinematics(model, data, q)
-    out["joint_placements"] = [placement(data.oMi[i]) for i in range(1, model.njoints)]
+    pin.forwardKinematics(model, data, q, v, a)
+    frame = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+    joints = range(1, model.njoints)
+    out["joint_placements"] = [placement(data.oMi[i]) for i in joints]
+    out["joint_velocities_world"] = [vector(pin.getVelocity(model, data, i, frame)) for i in joints]
+    out["joint_classical_accelerations_world"] = [
+        vector(pin.getClassicalAcceleration(model, data, i, frame)) for i in joints
+    ]
     out["center_of_mass"] = vector(pin.centerOfMass(model, data, q))
     out["com_jacobian"] = rows(pin.jacobianCenterOfMass(model, data, q))
     out["centroidal_momentum_matrix"] = rows(pin.ccrba(model, data, q, v))
