@@ -1,12 +1,14 @@
 //! Emits what a mechanism declares independently of its dynamics: the type, its doc
 //! comments, its `Mechanism` implementation (sizes, names, nominal parameters) and the
-//! runtime `Model` rebuilt from the same numbers.
+//! runtime `Model` rebuilt from the same numbers (bodies, joints, frames and loads).
 //!
 //! The runtime `Model` is built from the declaration as written (fixed joints included,
 //! numbers affine in the parameters), so the runtime merges and validates it on its own:
 //! that is what lets the reference catch a mistake of the compiler.
 
-use crate::model::{DeclaredBody, DeclaredFrame, DeclaredJoint, Mat3, Model, Value, Vec3};
+use crate::model::{
+    DeclaredBody, DeclaredFrame, DeclaredJoint, Load, LoadFrame, LoadKind, Mat3, Model, Value, Vec3,
+};
 use crate::syntax::JointKind;
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
@@ -92,6 +94,20 @@ fn frame_tokens(rt: &TokenStream, f: &DeclaredFrame) -> TokenStream {
     }
 }
 
+fn load_tokens(rt: &TokenStream, l: &Load) -> TokenStream {
+    let (name, body) = (&l.name, &l.declared_body);
+    let constructor = match l.kind {
+        LoadKind::Force => quote!(force),
+        LoadKind::Couple => quote!(couple),
+        LoadKind::Wrench => quote!(wrench),
+    };
+    let point = vec_tokens(&l.declared_point);
+    let in_world = (l.frame == LoadFrame::World).then(|| quote!(.in_world()));
+    quote! {
+        .load(#rt::LoadSpec::#constructor(#name, #body).at(#point) #in_world)
+    }
+}
+
 /// The type's documentation: the user's doc comments, then the coordinates (which entries of
 /// q and v each joint owns) and the bodies, each with its own doc comments.
 fn documentation(model: &Model) -> Vec<String> {
@@ -137,13 +153,15 @@ fn documentation(model: &Model) -> Vec<String> {
         lines.push(String::new());
         lines.push(
             " Each load's components are consecutive entries of the `loads` argument, in the \
-             frame of the body it was declared on; a force acts at the load's point (in that \
-             frame), a couple is free."
+             axes its `in` column names: `body`, the axes of the body it was declared on (the \
+             default), or `world`, the world's fixed axes (declared `in world`). A force acts \
+             at the load's point, given in the body's frame and fixed on the body; a couple is \
+             free."
                 .into(),
         );
         lines.push(String::new());
-        lines.push(" | load | acts on | at | `loads` entries |".into());
-        lines.push(" | --- | --- | --- | --- |".into());
+        lines.push(" | load | acts on | at | in | `loads` entries |".into());
+        lines.push(" | --- | --- | --- | --- | --- |".into());
         for load in &model.loads {
             let (o, n) = (load.input_offset, load.kind.input_count());
             let entries = match load.kind {
@@ -164,8 +182,12 @@ fn documentation(model: &Model) -> Vec<String> {
                     }
                 })
                 .collect();
+            let axes = match load.frame {
+                crate::model::LoadFrame::Body => "body",
+                crate::model::LoadFrame::World => "world",
+            };
             lines.push(format!(
-                " | `{}` | `{}` | [{}] | {entries} |",
+                " | `{}` | `{}` | [{}] | {axes} | {entries} |",
                 load.name,
                 load.declared_body,
                 at.join(", ")
@@ -342,6 +364,7 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
     let bodies = model.declared_bodies.iter().map(|b| body_tokens(rt, b));
     let joints = model.declared_joints.iter().map(|j| joint_tokens(rt, j));
     let frames = model.declared_frames.iter().map(|f| frame_tokens(rt, f));
+    let loads = model.loads.iter().map(|l| load_tokens(rt, l));
     let skip = model
         .skip_triangle_inequality
         .then(|| quote!(.skip_triangle_inequality()));
@@ -403,6 +426,7 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
                     #(#bodies)*
                     #(#joints)*
                     #(#frames)*
+                    #(#loads)*
                     .build()
             }
         }

@@ -241,7 +241,7 @@ mod tests {
         }
     }
 
-    /// A load's doc comment, body, point and input layout reach the type's docs.
+    /// A load's doc comment, body, point, axes and input layout reach the type's docs.
     #[test]
     fn loads_are_documented_with_their_inputs_and_frame() {
         let text = generated(quote! {
@@ -252,12 +252,12 @@ mod tests {
             joint weld: fixed(upper -> tool) { at: [0.4, 0.0, 0.0] }
             /// A push at the tip.
             load push: force on tool at [0.1, 0.0, 0.0];
-            load grip: wrench on upper;
+            load grip: wrench on upper in world;
         });
         for expected in [
             "/// # Loads",
-            "| `push` | `tool` | [0.1, 0, 0] | [0..3] = F |",
-            "| `grip` | `upper` | [0, 0, 0] | [3..6] = F, [6..9] = M |",
+            "| `push` | `tool` | [0.1, 0, 0] | body | [0..3] = F |",
+            "| `grip` | `upper` | [0, 0, 0] | world | [3..6] = F, [6..9] = M |",
             "`push`: A push at the tip.",
             "/// # Functions",
             "/// - [`Self::inverse_dynamics`]: ",

@@ -11,7 +11,7 @@
 //! | a setting | `gravity: ..;`, `outputs: [..];`, `frames: [..];`, `parameters: [..];`, `allow: [..];`, `urdf: "..";`, `floating_base: ..;`, `force_analysis: ..;`, `isa: ..;` (each at most once) |
 //! | a body | `body name { mass: .., com: [..], inertia: .. }` or `{ .., shape: .. }` |
 //! | a joint | `joint name: kind(parent -> child) { .. }` or `joint name: kind(parent -> child);` |
-//! | a load | `load name: force on body at [x, y, z];` (also `couple`, `wrench`) |
+//! | a load | `load name: force on body at [x, y, z] in world;` (also `couple`, `wrench`; `at` and `in world` / `in body` optional) |
 //! | a constraint | `constraint name: kind(a at [..], b at [..]) { .. };` |
 //! | a frame | `frame name: on body at [x, y, z] rotation ..;` (`at`, `rotation` optional) |
 //!
@@ -392,10 +392,14 @@
 //! `load name: wrench on body at [x, y, z];` declares a run-time input. A force has 3
 //! inputs, a couple 3, a wrench 6 (the force, then the couple). The loads' inputs are
 //! consecutive entries of the `loads` argument, in the order of declaration, each given
-//! **in the frame of the body it is declared on**; a force acts through the point `at` (in
-//! that frame; the body's origin when absent), a couple is free.
-//! `inverse_dynamics`, `forward_dynamics`, `joint_reactions` and `force_analysis` take
-//! `loads`; the generated type's rustdoc lists each load's entries.
+//! **in the axes of the body it is declared on**; a force acts through the point `at` (in
+//! that body's frame; the body's origin when absent), a couple is free.
+//! `inverse_dynamics`, `forward_dynamics` (and its `_aba`, `_ldlt` and `_derivatives`
+//! forms), `inverse_dynamics_derivatives`, `joint_reactions` and `force_analysis` take
+//! `loads`; the generated type's rustdoc lists each load's entries and axes, and
+//! `Mechanism::model()` holds the loads as declared ([`LoadSpec`](crate::LoadSpec), with
+//! [`Reference::generalized_load_forces`](crate::Reference::generalized_load_forces) for
+//! their generalized force).
 //!
 //! ```rust
 //! use dynamics_runtime::{mechanism, Mechanism};
@@ -416,6 +420,38 @@
 //! let loads = [0.0, 2.0, 0.0, 0.0, 0.0, 0.5];
 //! let tau = Pushed::inverse_dynamics(&[0.7_f64], &[0.0], &[0.0], &loads);
 //! assert!((tau[0] + 2.5).abs() < 1e-12);
+//! ```
+//!
+//! A trailing `in world` gives the components in the world's fixed axes instead (a cable
+//! pulling in a fixed direction, a contact force measured in the world); the point stays
+//! fixed on the body, given in its frame. The generated code turns the components into the
+//! body's axes, F_in_body = R_bodyᵀ F_in_world, with the body's orientation at `q`. `in body`
+//! says the default explicitly. The two may come in either order after the body; `in` takes
+//! `world` or `body` and is given once.
+//!
+//! ```rust
+//! use dynamics_runtime::{mechanism, LoadFrame, Mechanism};
+//!
+//! mechanism! {
+//!     pub struct Pulled;
+//!     gravity: none;
+//!     outputs: [inverse_dynamics];
+//!     body bar { mass: 1.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }
+//!     joint pivot: revolute(ground -> bar) { axis: z }
+//!     /// A cable at the tip, pulling along the world's y whatever the bar's angle.
+//!     load cable: force on bar at [1.0, 0.0, 0.0] in world;
+//!     /// The same force in the bar's axes.
+//!     load push: force on bar at [1.0, 0.0, 0.0] in body;
+//! }
+//!
+//! assert_eq!(Pulled::model().loads()[0].frame, LoadFrame::World);
+//! // At angle q the tip is at (cos q, sin q, 0): 2 N along the world's y has the moment
+//! // 2 cos q about the pivot, along the bar's y the moment 2.
+//! let q = 0.7_f64;
+//! let in_world = Pulled::inverse_dynamics(&[q], &[0.0], &[0.0], &[0.0, 2.0, 0.0, 0.0, 0.0, 0.0]);
+//! assert!((in_world[0] + 2.0 * q.cos()).abs() < 1e-12);
+//! let in_body = Pulled::inverse_dynamics(&[q], &[0.0], &[0.0], &[0.0, 0.0, 0.0, 0.0, 2.0, 0.0]);
+//! assert!((in_body[0] + 2.0).abs() < 1e-12);
 //! ```
 //!
 //! # Frames

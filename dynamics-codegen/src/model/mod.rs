@@ -355,6 +355,8 @@ pub struct Body {
     pub parts: Vec<Part>,
 }
 
+/// The axes an applied load's components are given in.
+pub use syntax::LoadFrame;
 /// Kind of an applied load.
 pub use syntax::LoadKind;
 
@@ -365,7 +367,8 @@ pub struct Load {
     pub name: String,
     /// Its doc comments.
     pub docs: Vec<String>,
-    /// The body it was declared on (its inputs are in that body's frame).
+    /// The body it was declared on (its inputs are in that body's axes unless `frame` is
+    /// the world).
     pub declared_body: String,
     /// The point of application as declared, in the declared body's frame.
     pub declared_point: Vec3,
@@ -373,8 +376,10 @@ pub struct Load {
     pub kind: LoadKind,
     /// The body of the tree it acts on.
     pub body: usize,
-    /// Rotation from the declared body's frame (in which the inputs are given) to the tree
-    /// body's frame.
+    /// The axes its inputs are given in: the declared body's, or the world's.
+    pub frame: LoadFrame,
+    /// Rotation from the declared body's frame (in which body-frame inputs are given) to
+    /// the tree body's frame.
     pub rotation_in_body: [[f64; 3]; 3],
     /// Point of application in the tree body's frame.
     pub point_in_body: Vec3,

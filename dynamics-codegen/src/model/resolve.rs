@@ -383,6 +383,7 @@ fn resolve_body(r: &mut Resolver, body: &syntax::Body) -> ResolvedBody {
         com,
         inertia,
         inertia_span,
+        inertia_from_mass: matches!(body.inertia, Some(InertiaForm::Shape(_))),
     }
 }
 

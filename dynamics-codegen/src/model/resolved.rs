@@ -15,6 +15,9 @@ pub(crate) struct ResolvedBody {
     pub com: Vec3,
     pub inertia: Mat3,
     pub inertia_span: SpanRange,
+    /// Whether I_G was computed from the mass (a `shape`), so that it shares the mass's
+    /// sign.
+    pub inertia_from_mass: bool,
 }
 
 /// A joint with resolved numbers.

@@ -38,10 +38,14 @@ pub(crate) fn check_all(mechanism: &syntax::Mechanism, resolved: &Resolved, d: &
     type_name_is_usable(&mechanism.name, d);
     names_are_unique(mechanism, d);
     constraint_names_are_unique(mechanism, d);
+    // No error that only follows from another on the same body: a shape's I_G scales with
+    // the mass, so a negative mass makes it negative too (the mass is the one mistake);
+    // an asymmetric I_G has no principal moments to judge. An I_G given on its own is
+    // judged even when the mass is wrong: its mistakes are the user's too.
     for body in &resolved.bodies {
         let inertia = nominal33(&body.inertia, &p);
-        mass_is_not_negative(body, &p, d);
-        if inertia_is_symmetric(body, &inertia, d) {
+        let mass_ok = mass_is_not_negative(body, &p, d);
+        if (mass_ok || !body.inertia_from_mass) && inertia_is_symmetric(body, &inertia, d) {
             inertia_is_positive(body, &inertia, d);
             if !resolved.skip_triangle_inequality {
                 inertia_satisfies_triangle(body, &inertia, d);
@@ -324,9 +328,10 @@ fn constraint_names_are_unique(mechanism: &syntax::Mechanism, d: &mut Diagnostic
     }
 }
 
-/// Rule: a body's mass is not negative.
-fn mass_is_not_negative(body: &ResolvedBody, p: &[f64], d: &mut Diagnostics) {
-    if body.mass.nominal(p) < 0.0 {
+/// Rule: a body's mass is not negative. Returns whether it is not.
+fn mass_is_not_negative(body: &ResolvedBody, p: &[f64], d: &mut Diagnostics) -> bool {
+    let negative = body.mass.nominal(p) < 0.0;
+    if negative {
         d.error(
             body.mass_span,
             format!(
@@ -336,6 +341,7 @@ fn mass_is_not_negative(body: &ResolvedBody, p: &[f64], d: &mut Diagnostics) {
             ),
         );
     }
+    !negative
 }
 
 /// Rule: I_G is symmetric (I_xy = I_yx, ...). Returns whether it is.

@@ -352,6 +352,20 @@ fn one_mistake_is_one_error() {
         e,
         vec!["`ground` is the fixed world frame; a body cannot be named `ground`"]
     );
+    // A negative mass with a shape (or a parameter whose nominal value makes it negative):
+    // not also "the inertia is not positive semi-definite", which the shape's I_G, scaled
+    // by the mass, only inherits.
+    let with_parameter = quote!(parameters: [m = 0.5];);
+    for (parameters, mass) in [(quote!(), quote!(-1.0)), (with_parameter, quote!(-2.0 * m))] {
+        let e = errors(quote! {
+            struct S;
+            #parameters
+            body bob { mass: #mass, com: [0.0, -0.5, 0.0], shape: box(size: [0.1, 0.2, 0.3]) }
+            joint pivot: revolute(ground -> bob) { axis: z }
+        });
+        assert_eq!(e.len(), 1, "{e:?}");
+        assert!(e[0].starts_with("body `bob` has mass -1 kg"), "{e:?}");
+    }
 }
 
 #[test]

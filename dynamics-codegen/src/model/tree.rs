@@ -157,6 +157,7 @@ pub(crate) fn build(
             declared_body: load.body.text.clone(),
             declared_point: point.clone(),
             kind: load.kind,
+            frame: load.frame(),
             body,
             rotation_in_body: at.rotation,
             point_in_body: value::add(&value::rotate(&at.rotation, &point), &at.translation),

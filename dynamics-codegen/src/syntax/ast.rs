@@ -429,8 +429,19 @@ pub enum LoadKind {
     Wrench,
 }
 
-/// `load name: force on body at [x, y, z];`: a run-time input acting on a body, given in
-/// the body frame, through a point given in the body frame.
+/// The axes a load's run-time components are given in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LoadFrame {
+    /// The loaded body's own axes, turning with it (`in body`, the default).
+    Body,
+    /// The world's fixed axes (`in world`): the generated code turns the components into
+    /// the body's axes, F_in_body = R_bodyᵀ F_in_world.
+    World,
+}
+
+/// `load name: force on body [at [x, y, z]] [in world | in body];`: a run-time input acting
+/// on a body, its components given in the body's axes (or the world's, with `in world`),
+/// through a point fixed on the body and given in the body frame.
 #[derive(Clone, Debug)]
 pub struct Load {
     /// Doc comments.
@@ -443,6 +454,16 @@ pub struct Load {
     pub body: Name,
     /// The point of application in the body frame (the origin when absent).
     pub at: Option<Vector>,
+    /// `in world` or `in body` as written, with the span of the frame's word (the body's
+    /// axes when absent).
+    pub frame: Option<(LoadFrame, Span)>,
+}
+
+impl Load {
+    /// The axes the load's components are given in: the body's unless `in world`.
+    pub fn frame(&self) -> LoadFrame {
+        self.frame.map_or(LoadFrame::Body, |(frame, _)| frame)
+    }
 }
 
 /// `frame name: on body [at [x, y, z]] [rotation ..];`: an operational frame (a tool

@@ -840,7 +840,8 @@ fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
     Ok(joint)
 }
 
-/// `load name: force|couple|wrench on body [at [x, y, z]];`.
+/// `load name: force|couple|wrench on body [at [x, y, z]] [in world | in body];`, the
+/// point and the axes in either order, each at most once.
 fn parse_load(input: ParseStream, docs: Vec<String>) -> syn::Result<Load> {
     let start = input.cursor();
     let name = parse_name(input)?;
@@ -862,16 +863,40 @@ fn parse_load(input: ParseStream, docs: Vec<String>) -> syn::Result<Load> {
         return Err(syn::Error::new(on.span(), "expected `on <body>`"));
     }
     let body = parse_name(input)?;
-    let mut at = None;
-    if input.peek(Ident) && !next_is_new_item(input) {
-        let at_kw: Ident = input.parse()?;
-        if at_kw != "at" {
-            return Err(syn::Error::new(
-                at_kw.span(),
-                "expected `at [x, y, z]` or `;`",
-            ));
+    let (mut at, mut frame): (Option<Vector>, Option<(LoadFrame, Span)>) = (None, None);
+    // The first `in`, for an error at a second one.
+    let mut first_in: Option<Span> = None;
+    loop {
+        if input.peek(Token![in]) {
+            let in_token: Token![in] = input.parse()?;
+            let parsed = parse_load_frame(input, in_token.span)?;
+            if let (Some((first, first_word)), Some(first_in)) = (frame, first_in) {
+                let mut error = SpanRange::new(in_token.span, parsed.1).error(format!(
+                    "the load's axes are given twice (`in {}`, then `in {}`); write `in world` or \
+                     `in body` once",
+                    load_frame_word(first),
+                    load_frame_word(parsed.0)
+                ));
+                error.combine(SpanRange::new(first_in, first_word).error("the first is here"));
+                return Err(error);
+            }
+            first_in = Some(in_token.span);
+            frame = Some(parsed);
+        } else if input.peek(Ident) && !next_is_new_item(input) {
+            let at_kw: Ident = input.parse()?;
+            if at_kw != "at" {
+                return Err(syn::Error::new(
+                    at_kw.span(),
+                    "expected `at [x, y, z]`, `in world`, `in body` or `;`",
+                ));
+            }
+            if at.is_some() {
+                return Err(syn::Error::new(at_kw.span(), "`at` is given twice"));
+            }
+            at = Some(parse_vector(input)?);
+        } else {
+            break;
         }
-        at = Some(parse_vector(input)?);
     }
     semicolon(input, start)?;
     Ok(Load {
@@ -880,7 +905,49 @@ fn parse_load(input: ParseStream, docs: Vec<String>) -> syn::Result<Load> {
         kind,
         body,
         at,
+        frame,
     })
+}
+
+/// The words that may follow a load's `in`.
+const LOAD_FRAMES: [&str; 2] = ["world", "body"];
+
+/// The word of a load frame, as written after `in`.
+fn load_frame_word(frame: LoadFrame) -> &'static str {
+    match frame {
+        LoadFrame::World => "world",
+        LoadFrame::Body => "body",
+    }
+}
+
+/// The word after a load's `in`: `world` or `body`, with its span (the `in`'s when the
+/// word is missing).
+fn parse_load_frame(input: ParseStream, in_span: Span) -> syn::Result<(LoadFrame, Span)> {
+    let axes = "`in world` (the world's fixed axes) or `in body` (the loaded body's axes, the \
+                default)";
+    let Ok(word) = input.call(Ident::parse_any) else {
+        let at = if input.is_empty() {
+            in_span
+        } else {
+            input.span()
+        };
+        return Err(syn::Error::new(
+            at,
+            format!("expected `world` or `body` after `in`: a load's components are given {axes}"),
+        ));
+    };
+    match word.to_string().as_str() {
+        "world" => Ok((LoadFrame::World, word.span())),
+        "body" => Ok((LoadFrame::Body, word.span())),
+        other => {
+            let hint = match closest(other, &LOAD_FRAMES) {
+                Some(near) => format!("did you mean `in {near}`? A load's components are given"),
+                None => "a load's components are given".to_owned(),
+            };
+            Err(SpanRange::new(in_span, word.span())
+                .error(format!("unknown load axes `in {other}`; {hint} {axes}")))
+        }
+    }
 }
 
 /// Whether the next tokens start another item (a doc comment, the type, a setting
@@ -1065,6 +1132,49 @@ mod tests {
         assert_eq!(m.joints[0].parent.text, "ground");
         assert_eq!(m.loads[0].kind, LoadKind::Force);
         assert_eq!(m.outputs.as_ref().map(Vec::len), Some(2));
+    }
+
+    /// A load's components are in the body's axes unless `in world`; the point and the
+    /// axes come in either order, each once; a misspelt frame names the word meant.
+    #[test]
+    fn loads_take_their_axes_after_in() {
+        let frames = |load: proc_macro2::TokenStream| {
+            parse(quote! { struct P; #load }).map(|m| {
+                let load = &m.loads[0];
+                (load.frame(), load.at.is_some())
+            })
+        };
+        let ok = |load| frames(load).expect("parses");
+        assert_eq!(ok(quote!(load l: force on b;)), (LoadFrame::Body, false));
+        assert_eq!(
+            ok(quote!(load l: force on b at [0.0, 0.0, 0.1] in world;)),
+            (LoadFrame::World, true)
+        );
+        assert_eq!(
+            ok(quote!(load l: wrench on b in world at [0.0, 0.0, 0.1];)),
+            (LoadFrame::World, true)
+        );
+        assert_eq!(
+            ok(quote!(load l: couple on b in body;)),
+            (LoadFrame::Body, false)
+        );
+        let error = |load| frames(load).expect_err("rejected").to_string();
+        let e = error(quote!(load l: force on b in wrold;));
+        assert!(
+            e.contains("unknown load axes `in wrold`; did you mean `in world`?"),
+            "{e}"
+        );
+        let e = error(quote!(load l: force on b in space;));
+        assert!(
+            e.contains("unknown load axes `in space`;") && !e.contains("did you mean"),
+            "{e}"
+        );
+        let e = error(quote!(load l: force on b in world in world;));
+        assert!(e.contains("the load's axes are given twice"), "{e}");
+        let e = error(quote!(load l: force on b in;));
+        assert!(e.contains("expected `world` or `body` after `in`"), "{e}");
+        let e = error(quote!(load l: force on b at [0.0, 0.0, 0.0] at [1.0, 0.0, 0.0];));
+        assert!(e.contains("`at` is given twice"), "{e}");
     }
 
     #[test]

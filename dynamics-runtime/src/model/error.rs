@@ -98,9 +98,9 @@ pub enum ModelError {
         /// The name it used.
         name: String,
     },
-    /// Two bodies or two joints share a name.
+    /// Two bodies, two joints or two loads share a name.
     DuplicateName {
-        /// "body" or "joint".
+        /// "body", "joint" or "load".
         kind: &'static str,
         /// The name.
         name: String,
@@ -152,6 +152,13 @@ pub enum ModelError {
     UnknownFrameBody {
         /// The frame.
         frame: String,
+        /// The body name it used.
+        body: String,
+    },
+    /// A load acts on a body that was not declared.
+    UnknownLoadBody {
+        /// The load.
+        load: String,
         /// The body name it used.
         body: String,
     },
@@ -303,6 +310,11 @@ impl fmt::Display for ModelError {
                 f,
                 "frame `{frame}`: body `{body}` is not a declared body (nor `ground`); attach \
                  the frame to a declared body"
+            ),
+            UnknownLoadBody { load, body } => write!(
+                f,
+                "load `{load}`: body `{body}` is not a declared body; a load acts on a declared \
+                 body"
             ),
             DuplicateFrameName { frame, taken_by } => write!(
                 f,

@@ -677,3 +677,64 @@ fn frame_errors_are_collected_with_the_tree_errors() {
     );
     assert_eq!(errors.to_string().lines().count(), 4);
 }
+
+#[test]
+fn loads_are_placed_on_the_tree_body_and_numbered() {
+    // A force on a body welded 1 m along x and turned a quarter turn about z: its point and
+    // the declared body's axes are carried into the moving body's frame.
+    let quarter = [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+    let model = pendulum()
+        .body(rod("tip"))
+        .joint(JointSpec::fixed("weld", "rod", "tip").placed([1.0, 0.0, 0.0], quarter))
+        .load(LoadSpec::force("push", "tip").at([0.5, 0.0, 0.0]))
+        .load(LoadSpec::wrench("wind", "rod").in_world())
+        .load(LoadSpec::couple("twist", "rod").in_frame(LoadFrame::Body))
+        .build()
+        .expect("valid");
+    let loads = model.loads();
+    assert_eq!(model.num_load_inputs(), 12);
+    assert_eq!(
+        loads
+            .iter()
+            .map(|l| (l.name.as_str(), l.kind, l.frame, l.body, l.input_offset))
+            .collect::<Vec<_>>(),
+        [
+            ("push", LoadType::Force, LoadFrame::Body, Some(0), 0),
+            ("wind", LoadType::Wrench, LoadFrame::World, Some(0), 3),
+            ("twist", LoadType::Couple, LoadFrame::Body, Some(0), 9),
+        ]
+    );
+    let push = &loads[0].placement_in_body;
+    assert!((push.translation - nalgebra::Vector3::new(1.0, 0.5, 0.0)).amax() < 1e-15);
+    assert_eq!(push.rotation, matrix_from_rows(quarter));
+}
+
+#[test]
+fn a_load_names_a_declared_body_and_a_name_of_its_own() {
+    let (e, message) = only_error(pendulum().load(LoadSpec::force("push", "rdo")));
+    assert_eq!(
+        e,
+        ModelError::UnknownLoadBody {
+            load: "push".into(),
+            body: "rdo".into()
+        }
+    );
+    assert!(message.contains("load `push`: body `rdo` is not a declared body"));
+    let (e, _) = only_error(pendulum().load(LoadSpec::force("push", GROUND)));
+    assert!(matches!(e, ModelError::UnknownLoadBody { .. }));
+    let (e, message) = only_error(
+        pendulum()
+            .load(LoadSpec::force("push", "rod"))
+            .load(LoadSpec::couple("push", "rod")),
+    );
+    assert_eq!(
+        e,
+        ModelError::DuplicateName {
+            kind: "load",
+            name: "push".into()
+        }
+    );
+    assert!(message.contains("two loads are named `push`"));
+    let (e, _) = only_error(pendulum().load(LoadSpec::force("push", "rod").at([f64::NAN; 3])));
+    assert!(matches!(e, ModelError::NonFinite { field: "point", .. }));
+}
