@@ -285,6 +285,37 @@ impl JointKind {
     }
 }
 
+/// A coordinate's limits, as declared or read from a URDF `<limit>`: ±∞ where none is
+/// given. They constrain nothing in the generated functions; they are printed as
+/// `JOINT_LIMITS`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointLimits {
+    /// Lowest position.
+    pub lower: f64,
+    /// Highest position.
+    pub upper: f64,
+    /// Largest |velocity|.
+    pub velocity: f64,
+    /// Largest |effort|.
+    pub effort: f64,
+}
+
+impl JointLimits {
+    /// No limit at all.
+    pub const UNBOUNDED: JointLimits = JointLimits {
+        lower: f64::NEG_INFINITY,
+        upper: f64::INFINITY,
+        velocity: f64::INFINITY,
+        effort: f64::INFINITY,
+    };
+
+    /// Whether any limit is finite.
+    #[must_use]
+    pub fn is_bounded(&self) -> bool {
+        *self != Self::UNBOUNDED
+    }
+}
+
 /// The joint that moves a body of the tree.
 #[derive(Clone, Debug)]
 pub struct Joint {
@@ -302,6 +333,10 @@ pub struct Joint {
     pub armature: Value,
     /// Viscous friction coefficient of each coordinate.
     pub damping: Value,
+    /// Coulomb friction of each coordinate (in no generated function).
+    pub friction: f64,
+    /// The limits of each coordinate (a free joint's are unbounded).
+    pub limits: JointLimits,
     /// First coordinate in q.
     pub idx_q: usize,
     /// First coordinate in v.

@@ -52,6 +52,7 @@ pub(crate) fn check_all(mechanism: &syntax::Mechanism, resolved: &Resolved, d: &
         axis_is_nonzero(joint, d);
         rotation_is_proper(joint, d);
         joint_coefficients_are_not_negative(joint, &p, d);
+        limits_and_friction_fit_the_joint(joint, d);
     }
     joints_name_declared_bodies(mechanism, d);
     body_has_one_parent(mechanism, d);
@@ -111,8 +112,9 @@ pub(crate) fn report_undeclared_parameter(name: &str, span: SpanRange, d: &mut D
 }
 
 /// Rule: axes, rotations, gravity and shape dimensions are constants (they select the
-/// structure of the generated code); parameters may appear in masses, mass centres,
-/// inertias, joint offsets, armature and damping.
+/// structure of the generated code), and so are joint limits and friction (they are
+/// printed as constants); parameters may appear in masses, mass centres, inertias, joint
+/// offsets, armature and damping.
 pub(crate) fn report_parameter_not_allowed(
     name: &str,
     what: &str,
@@ -121,7 +123,7 @@ pub(crate) fn report_parameter_not_allowed(
 ) {
     d.error(
         span,
-        format!("parameter `{name}` cannot be used in {what}: axes, rotations, gravity and shape dimensions must be constants"),
+        format!("parameter `{name}` cannot be used in {what}: axes, rotations, gravity, shape dimensions, joint limits and friction must be constants"),
     );
 }
 
@@ -471,6 +473,58 @@ fn joint_coefficients_are_not_negative(joint: &ResolvedJoint, p: &[f64], d: &mut
                     joint.name.text,
                     nominal_text(value, p)
                 ),
+            );
+        }
+    }
+}
+
+/// Rule: limits and friction belong to a revolute or prismatic joint (a fixed joint does
+/// not move, a free joint's six coordinates have no one limit), and are consistent: lower ≤
+/// upper, and the velocity and effort limits and the friction not negative.
+fn limits_and_friction_fit_the_joint(joint: &ResolvedJoint, d: &mut Diagnostics) {
+    let name = &joint.name.text;
+    if matches!(joint.kind, JointKind::Fixed | JointKind::Free) {
+        let kind = if joint.kind == JointKind::Fixed {
+            "fixed"
+        } else {
+            "free"
+        };
+        if let Some(span) = joint.limits.span {
+            d.error(
+                span,
+                format!("joint `{name}` is a {kind} joint, which has no limits; remove `limits`"),
+            );
+        }
+        if joint.friction.0 != 0.0 {
+            d.error(
+                joint.friction.1,
+                format!(
+                    "joint `{name}` is a {kind} joint, which has no friction; remove `friction`"
+                ),
+            );
+        }
+        return;
+    }
+    let l = &joint.limits;
+    if l.lower.0 > l.upper.0 {
+        d.error(
+            l.span.unwrap_or(l.upper.1),
+            format!(
+                "joint `{name}` has lower limit {} above its upper limit {}; the lower limit \
+                 must be ≤ the upper",
+                l.lower.0, l.upper.0
+            ),
+        );
+    }
+    for (what, (value, span)) in [
+        ("velocity limit", l.velocity),
+        ("effort limit", l.effort),
+        ("friction", joint.friction),
+    ] {
+        if value < 0.0 {
+            d.error(
+                span,
+                format!("joint `{name}` has {what} {value}; it must be ≥ 0"),
             );
         }
     }

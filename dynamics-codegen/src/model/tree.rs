@@ -11,8 +11,8 @@ use super::resolved::Resolved;
 use super::rules::{self, GROUND};
 use super::value::{self, nominal3, Value, Vec3};
 use super::{
-    Body, DeclaredBody, DeclaredFrame, DeclaredJoint, Diagnostics, Frame, Joint, JointKind, Load,
-    Model, Part,
+    Body, DeclaredBody, DeclaredFrame, DeclaredJoint, Diagnostics, Frame, Joint, JointKind,
+    JointLimits, Load, Model, Part,
 };
 use crate::syntax::{self, JointKind as Declared};
 use std::collections::HashMap;
@@ -108,6 +108,13 @@ pub(crate) fn build(
             translation_in_parent: translation,
             armature: joint.armature.0.clone(),
             damping: joint.damping.0.clone(),
+            friction: joint.friction.0,
+            limits: JointLimits {
+                lower: joint.limits.lower.0,
+                upper: joint.limits.upper.0,
+                velocity: joint.limits.velocity.0,
+                effort: joint.limits.effort.0,
+            },
             idx_q: nq,
             idx_v: nv,
             kind,
