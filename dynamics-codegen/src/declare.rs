@@ -267,17 +267,30 @@ fn documentation(model: &Model) -> Vec<String> {
             ));
         }
     }
-    let documented: Vec<(&str, &[String])> = model
-        .bodies
-        .iter()
-        .flat_map(|b| {
-            [
-                (b.joint.name.as_str(), b.joint.docs.as_slice()),
-                (b.name.as_str(), b.docs.as_slice()),
-            ]
-        })
-        .filter(|(_, docs)| !docs.is_empty())
-        .collect();
+    // Each moving joint and body, then the fixed joints and bodies welded into it; the
+    // bodies welded to the ground first.
+    let nominal: Vec<f64> = model.parameters.iter().map(|p| p.nominal).collect();
+    let welded = |parts: &[crate::model::Part]| -> Vec<(String, Vec<String>)> {
+        parts
+            .iter()
+            .flat_map(|part| {
+                part.weld
+                    .clone()
+                    .into_iter()
+                    .chain([(part.name.clone(), part.docs.clone())])
+            })
+            .collect()
+    };
+    let mut documented: Vec<(String, Vec<String>)> = welded(&model.ground_parts);
+    for b in &model.bodies {
+        documented.push((b.joint.name.clone(), b.joint.docs.clone()));
+        documented.push((
+            b.name.clone(),
+            b.documented(&nominal, model.skip_triangle_inequality),
+        ));
+        documented.extend(welded(b.parts.get(1..).unwrap_or_default()));
+    }
+    documented.retain(|(_, docs)| !docs.is_empty());
     if !documented.is_empty() {
         lines.push(String::new());
         lines.push(" # Bodies and joints".into());

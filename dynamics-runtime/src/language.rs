@@ -202,8 +202,9 @@
 //! ## `allow`
 //!
 //! `allow: [triangle_inequality];` waives the one check that can be waived: that the
-//! principal moments of every inertia satisfy the triangle inequality (I1 + I2 ≥ I3, which
-//! every physical body does). Any other name is an error.
+//! principal moments of every body's inertia (as merged through fixed joints) satisfy the
+//! triangle inequality (I1 + I2 ≥ I3, which every physical body does). Any other name is
+//! an error.
 //!
 //! ## `urdf`, `floating_base` and `urdf_damping`
 //!
@@ -231,6 +232,13 @@
 //! `urdf_damping: false;` drops the file's damping (the default, `true`, keeps it), and the
 //! functions then match Pinocchio's. `floating_base` and `urdf_damping` take `true` or
 //! `false` and apply to the `urdf:` file: either without one is an error.
+//!
+//! **Fixed joints.** A link welded through a fixed joint is merged into the body it is
+//! welded to (masses, mass centres and inertias combined), and the inertia rules judge the
+//! merged body, not each link: a link's placeholder inertia (a tiny diagonal that alone
+//! violates the triangle inequality, say) is accepted when the body it is welded into is
+//! physical, and the generated docs of that body say so. A merged body that is itself
+//! unphysical is an error.
 //!
 //! ```rust
 //! use dynamics_runtime::{mechanism, Mechanism};
@@ -308,8 +316,13 @@
 //! A shape is a uniform solid centred at the mass centre; a shape's axis is a body axis,
 //! `x`, `y` or `z` (use `inertia: principal(..)` for another orientation). A body gives
 //! either `inertia` or `shape`, and the fields are `mass`, `com`, `inertia` (or `shape`),
-//! each at most once. Masses are not negative, inertias are symmetric, positive
-//! semi-definite and satisfy the triangle inequality; shape dimensions are not negative.
+//! each at most once. Masses are not negative, inertias are symmetric, shape dimensions
+//! are not negative (each body as declared), and the inertia of every body of the
+//! dynamics is positive semi-definite and satisfies the triangle inequality, judged on the
+//! bodies as merged through fixed joints: the bodies welded to one body (or to the ground)
+//! are one body, whose mass, mass centre and I_G combine theirs, and a body that alone
+//! would fail (a placeholder inertia) is accepted when the merged body passes. The type's
+//! docs note such a body.
 //!
 //! ```rust
 //! use dynamics_runtime::{mechanism, Mechanism};

@@ -349,6 +349,11 @@ pub struct Joint {
 pub struct Part {
     /// The declared body's name.
     pub name: String,
+    /// Its doc comments.
+    pub docs: Vec<String>,
+    /// The fixed joint that welds it (its name and doc comments); `None` for a tree body's
+    /// own part, which its moving joint moves.
+    pub weld: Option<(String, Vec<String>)>,
     /// Mass m.
     pub mass: Value,
     /// Mass centre in the tree body's frame.
@@ -371,6 +376,37 @@ pub struct Body {
     /// The declared bodies it is made of (itself first, then bodies merged through fixed
     /// joints).
     pub parts: Vec<Part>,
+}
+
+impl Body {
+    /// Its doc comments, then, when a part welded into it has an inertia the rules would
+    /// reject alone (a URDF link's placeholder), a note that the rules judged the merged
+    /// body.
+    #[must_use]
+    pub fn documented(&self, p: &[f64], skip_triangle_inequality: bool) -> Vec<String> {
+        let mut docs = self.docs.clone();
+        if self.parts.len() < 2 {
+            return docs;
+        }
+        let others: Vec<String> = self.parts[1..]
+            .iter()
+            .map(|part| format!("`{}`", part.name))
+            .collect();
+        for part in &self.parts {
+            let inertia = value::nominal33(&part.inertia_com_in_body, p);
+            if let Some(defect) = rules::inertia_defect(&inertia, !skip_triangle_inequality) {
+                docs.push(format!(
+                    " Note: the inertia of `{}` alone {}, as a placeholder inertia in a URDF \
+                     file may; the inertia rules judge the body merged with {} (welded to it \
+                     through fixed joints), which is physical.",
+                    part.name,
+                    defect.describe(),
+                    others.join(", ")
+                ));
+            }
+        }
+        docs
+    }
 }
 
 /// Kind of an applied load.
@@ -494,6 +530,9 @@ pub struct Model {
     pub bodies: Vec<Body>,
     /// Applied loads, in declaration order.
     pub loads: Vec<Load>,
+    /// The declared bodies welded to the ground through fixed joints (each in the world
+    /// frame), in depth-first order: they enter no dynamics.
+    pub ground_parts: Vec<Part>,
     /// The operational frames the frame outputs cover: every body welded through a fixed
     /// joint (in the tree's depth-first order) then every declared `frame`, or those
     /// `frames: [..]` lists, in its order.

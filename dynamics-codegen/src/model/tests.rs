@@ -702,3 +702,73 @@ fn limits_and_friction_are_checked() {
         ["unknown limit `lowr`; the limits are lower, upper, velocity, effort"]
     );
 }
+
+/// The inertia rules judge bodies merged through fixed joints: a placeholder inertia that
+/// alone violates the triangle inequality is accepted welded to a physical body (and the
+/// body's docs say so), a merged body that is unphysical is an error at the body it is
+/// welded to, naming the merged bodies.
+#[test]
+fn inertia_rules_judge_the_merged_body() {
+    let m = lower_tokens(quote! {
+        pub struct Quadruped;
+        body base { mass: 0.001, inertia: diag([1e-6, 1e-6, 1e-5]) }
+        body trunk { mass: 6.0, com: [0.01, 0.0, 0.02], inertia: diag([0.05, 0.12, 0.14]) }
+        joint root: free(ground -> base);
+        joint weld: fixed(base -> trunk) { at: [0.02, 0.0, 0.01], rotation: rpy(0.0, 0.0, 0.1) }
+    })
+    .expect("the merged body is physical");
+    let docs = m.bodies[0].documented(&[], m.skip_triangle_inequality);
+    assert_eq!(
+        docs,
+        [
+            " Note: the inertia of `base` alone violates the triangle inequality I1 + I2 ≥ I3 \
+          (principal moments 1e-6, 1e-6, 1e-5 kg·m²), as a placeholder inertia in a URDF \
+          file may; the inertia rules judge the body merged with `trunk` (welded to it \
+          through fixed joints), which is physical."
+        ]
+    );
+    let e = errors(quote! {
+        pub struct Quadruped;
+        body base { mass: 0.001, inertia: diag([1e-6, 1e-6, 1e-5]) }
+        body trunk { mass: 6.0, inertia: diag([0.1, 0.1, 0.3]) }
+        body lamp { mass: 0.1, shape: point }
+        joint root: free(ground -> base);
+        joint weld: fixed(base -> trunk);
+        joint mount: fixed(trunk -> lamp) { at: [0.0, 0.0, 0.1] }
+    });
+    assert_eq!(
+        e,
+        [
+            "the principal moments of body `base` merged with `trunk`, `lamp` (welded to it \
+          through fixed joints) (0.100985, 0.100985, 0.30001 kg·m²) violate the triangle \
+          inequality I1 + I2 ≥ I3 (0.201969 < 0.30001): no mass distribution has this inertia \
+          (`allow: [triangle_inequality];` accepts it anyway)"
+        ]
+    );
+    // The bodies welded to the ground are merged too; a body alone is judged as declared.
+    let ground = |weld: proc_macro2::TokenStream| {
+        errors(quote! {
+            pub struct P;
+            body stand { mass: 0.001, inertia: diag([1e-6, 1e-6, 1e-5]) }
+            body plate { mass: 2.0, inertia: diag([0.1, 0.1, 0.15]) }
+            body arm { mass: 1.0, com: [0.5, 0.0, 0.0], shape: point }
+            joint weld: fixed(ground -> stand);
+            #weld
+            joint shoulder: revolute(plate -> arm) { axis: z }
+        })
+    };
+    assert_eq!(
+        ground(quote! { joint bolt: fixed(stand -> plate); }),
+        Vec::<String>::new()
+    );
+    assert_eq!(
+        ground(quote! { joint bolt: fixed(ground -> plate); }),
+        Vec::<String>::new()
+    );
+    let e = ground(quote! { joint bolt: revolute(ground -> plate) { axis: z } });
+    assert_eq!(e.len(), 1, "{e:?}");
+    assert!(
+        e[0].starts_with("the principal moments of body `stand` (1e-6, 1e-6, 1e-5 kg·m²)"),
+        "{e:?}"
+    );
+}

@@ -53,6 +53,7 @@ pub(crate) fn build(
     let (mut nq, mut nv) = (0, 0);
     // Bodies welded through fixed joints, in depth-first order: the default frames.
     let mut welded: Vec<usize> = Vec::new();
+    let mut ground_parts: Vec<Part> = Vec::new();
     for j in order {
         let joint = &resolved.joints[j];
         let parent = match joint.parent.text.as_str() {
@@ -73,16 +74,17 @@ pub(crate) fn build(
         let declared = &resolved.bodies[child];
         let kind = match (joint.kind, joint.axis) {
             (Declared::Fixed, _) => {
-                if let Some(b) = parent.body {
-                    bodies[b].parts.push(Part {
-                        name: declared.name.text.clone(),
-                        mass: declared.mass.clone(),
-                        com_in_body: value::add(
-                            &value::rotate(&rotation, &declared.com),
-                            &translation,
-                        ),
-                        inertia_com_in_body: value::rotate_matrix(&rotation, &declared.inertia),
-                    });
+                let part = Part {
+                    name: declared.name.text.clone(),
+                    docs: declared.docs.clone(),
+                    weld: Some((joint.name.text.clone(), joint.docs.clone())),
+                    mass: declared.mass.clone(),
+                    com_in_body: value::add(&value::rotate(&rotation, &declared.com), &translation),
+                    inertia_com_in_body: value::rotate_matrix(&rotation, &declared.inertia),
+                };
+                match parent.body {
+                    Some(b) => bodies[b].parts.push(part),
+                    None => ground_parts.push(part),
                 }
                 attached[child] = Some(Attachment {
                     body: parent.body,
@@ -138,6 +140,8 @@ pub(crate) fn build(
             joint: tree_joint,
             parts: vec![Part {
                 name: declared.name.text.clone(),
+                docs: Vec::new(),
+                weld: None,
                 mass: declared.mass.clone(),
                 com_in_body: declared.com.clone(),
                 inertia_com_in_body: declared.inertia.clone(),
@@ -228,6 +232,7 @@ pub(crate) fn build(
         parameters: resolved.parameters.clone(),
         outputs: resolved.outputs,
         bodies,
+        ground_parts,
         loads,
         frames,
         load_inputs: offset,
