@@ -14,6 +14,12 @@
 //! floating and spherical joints are refused: the tree expansion has no closed form for
 //! them.
 //!
+//! Joints are declared sorted by name (byte order, stable), so that the tree, which takes
+//! a body's children in declaration order, orders siblings as Pinocchio does: its URDF
+//! parser walks the tree depth first and takes a link's child joints from urdfdom, which
+//! keeps them in a map sorted by name, whatever their order in the file. The coordinates
+//! of a branched URDF are thus Pinocchio's, each subtree contiguous.
+//!
 //! The XML is parsed by roxmltree; `read` maps its elements to URDF's meaning, as urdfdom
 //! and urdf-rs do: the `<link>` and `<joint>` children of the root element, matched by local
 //! name (so namespaces, comments and other elements such as `<material>`, `<gazebo>` and
@@ -106,7 +112,11 @@ pub fn import(
             span: range,
         });
     }
-    for joint in &robot.joints {
+    // Sorted by name (stable): the tree takes a body's children in declaration order, and
+    // Pinocchio takes a link's child joints in name order (see the module's docs).
+    let mut joints: Vec<&UrdfJoint> = robot.joints.iter().collect();
+    joints.sort_by(|a, b| a.name.cmp(&b.name));
+    for joint in joints {
         let kind = match joint.kind {
             JointType::Revolute | JointType::Continuous => JointKind::Revolute,
             JointType::Prismatic => JointKind::Prismatic,
@@ -970,7 +980,12 @@ mod tests {
             ),
         )
         .expect("imports");
-        let [spin, slide, weld] = [&m.joints[0], &m.joints[1], &m.joints[2]];
+        // Declared in name order, not the file's.
+        let [slide, spin, weld] = [&m.joints[0], &m.joints[1], &m.joints[2]];
+        assert_eq!(
+            [&spin.name.text, &slide.name.text, &weld.name.text],
+            ["spin", "slide", "weld"]
+        );
         assert_eq!(spin.kind, JointKind::Revolute);
         assert!(
             spin.docs.iter().any(|d| d.contains("Pinocchio")),
@@ -1445,6 +1460,34 @@ mod tests {
             assert_eq!(names, [name, &format!("{name}_2"), &added]);
             crate::model::lower(&m).expect("no duplicate joint name");
         }
+    }
+
+    /// The coordinates come depth first, each link's child joints in name order, as
+    /// Pinocchio's URDF parser orders them, whatever the file's order (here breadth first,
+    /// and the hips not in name order, nor their links).
+    #[test]
+    fn joints_come_depth_first_in_name_order() {
+        let m = import_text(
+            "order",
+            &format!(
+                r#"<robot name="r"><link name="base"/>{}{}{}{}
+                   <joint name="fr_hip" type="revolute"><parent link="base"/><child link="a"/></joint>
+                   <joint name="fl_hip" type="revolute"><parent link="base"/><child link="b"/></joint>
+                   <joint name="fr_knee" type="revolute"><parent link="a"/><child link="c"/></joint>
+                   <joint name="fl_knee" type="revolute"><parent link="b"/><child link="d"/></joint>
+                   </robot>"#,
+                link("a"),
+                link("b"),
+                link("c"),
+                link("d")
+            ),
+        )
+        .expect("imports");
+        let model = crate::model::lower(&m).expect("valid");
+        let joints: Vec<&str> = model.bodies.iter().map(|b| b.joint.name.as_str()).collect();
+        assert_eq!(joints, ["fl_hip", "fl_knee", "fr_hip", "fr_knee"]);
+        let parents: Vec<Option<usize>> = model.bodies.iter().map(|b| b.parent).collect();
+        assert_eq!(parents, [None, Some(0), None, Some(2)]);
     }
 
     #[test]

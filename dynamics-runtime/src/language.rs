@@ -233,6 +233,14 @@
 //! functions then match Pinocchio's. `floating_base` and `urdf_damping` take `true` or
 //! `false` and apply to the `urdf:` file: either without one is an error.
 //!
+//! **Joint order.** The bodies, joints and coordinates are ordered depth first from the
+//! ground, each subtree contiguous, as Pinocchio orders them: a URDF link's child joints in
+//! the order of their names (byte by byte, `B` before `a`), which is the order Pinocchio's
+//! URDF parser takes them in (from urdfdom, which keeps them sorted by name), whatever their
+//! order in the file. So `JOINT_NAMES`, q and v are Pinocchio's, and a Pinocchio state can
+//! be used as it is (but for `continuous` joints, whose (cos θ, sin θ) is θ here). A
+//! declared mechanism's children come in declaration order.
+//!
 //! **Fixed joints.** A link welded through a fixed joint is merged into the body it is
 //! welded to (masses, mass centres and inertias combined), and the inertia rules judge the
 //! merged body, not each link: a link's placeholder inertia (a tiny diagonal that alone
@@ -360,7 +368,9 @@
 //!
 //! `joint name: kind(parent -> child) { field: value, .. }` (or `;` instead of the braces
 //! when there are no fields). The parent is a body or `ground`; every body has exactly one
-//! parent joint and the bodies form a tree rooted at the ground.
+//! parent joint and the bodies form a tree rooted at the ground. The bodies, joints and
+//! coordinates (`BODY_NAMES`, `JOINT_NAMES`, q, v) are numbered depth first from the
+//! ground, each subtree contiguous, a body's children in declaration order.
 //!
 //! | kind | coordinates |
 //! | --- | --- |

@@ -1,5 +1,6 @@
-//! The tree: bodies ordered depth first from the ground (parents first, children in
-//! declaration order, as Pinocchio orders URDF trees), fixed joints merged into composite
+//! The tree: bodies ordered depth first from the ground (parents first, each subtree
+//! contiguous, children in declaration order: the URDF import declares a file's joints
+//! sorted by name, which makes this Pinocchio's order), fixed joints merged into composite
 //! bodies, coordinates numbered, and the rule that every coordinate has inertia.
 //!
 //! A body joined to its parent by a fixed joint becomes a [`Part`] of the parent's tree

@@ -2,10 +2,11 @@
 //!
 //! `build` checks every rule of [`super::rules`] (the inertia rules on the bodies as merged
 //! through fixed joints), resolves names, orders the bodies so that `parent[i] < i` (depth
-//! first, in declaration order, as Pinocchio orders URDF trees), merges bodies joined by
-//! fixed joints into composite bodies (parallel-axis theorem), numbers the coordinates, and
-//! places every frame (each declared body's, then each declared [`FrameSpec`]) on the tree
-//! body it moves with.
+//! first, each subtree contiguous, children in declaration order: Pinocchio's order when
+//! the joints are declared as the URDF import declares them, sorted by name), merges bodies
+//! joined by fixed joints into composite bodies (parallel-axis theorem), numbers the
+//! coordinates, and places every frame (each declared body's, then each declared
+//! [`FrameSpec`]) on the tree body it moves with.
 
 use super::error::{ModelError, ModelErrors};
 use super::{rules, Body, Frame, Inertia, Joint, JointKind, Model, Placement, GROUND};
