@@ -39,7 +39,7 @@ pub use dynamics::{
 };
 pub use dynamics_macros::mechanism;
 pub use lanes::{F32x8, F64x4, Lanes};
-pub use mechanism::{FunctionCost, Mechanism};
+pub use mechanism::{FunctionCost, JointLimits, Mechanism};
 pub use model::{
     BodySpec, FrameSpec, Inertia, JointKind, JointSpec, JointType, Load, LoadFrame, LoadSpec,
     LoadType, Model, ModelBuilder, ModelError, ModelErrors, Placement, SizeError, GROUND,

@@ -244,13 +244,16 @@ pub struct Constraint {
     pub direction: Option<Axis>,
 }
 
-/// `urdf: "path";` with `floating_base: bool;`.
+/// `urdf: "path";` with `floating_base: bool;` and `urdf_damping: bool;`.
 #[derive(Clone, Debug)]
 pub struct UrdfSource {
     /// The path as written, relative to the crate's manifest directory.
     pub path: syn::LitStr,
     /// Whether the root link gets a free-floating joint.
     pub floating_base: bool,
+    /// Whether the joints' `<dynamics damping>` is imported (`urdf_damping: false;` drops
+    /// it, as Pinocchio's algorithms ignore it).
+    pub damping: bool,
 }
 
 /// `name = nominal` in `parameters: [...]`.
@@ -388,7 +391,8 @@ pub enum JointKind {
     Free,
 }
 
-/// `joint name: kind(parent -> child) { axis: .., at: .., rotation: .., armature: .., damping: .. }`.
+/// `joint name: kind(parent -> child) { axis: .., at: .., rotation: .., armature: .., damping: ..,
+/// friction: .., limits: { .. }, driven: .. }`.
 #[derive(Clone, Debug)]
 pub struct Joint {
     /// Doc comments.
@@ -413,9 +417,30 @@ pub struct Joint {
     pub armature: Option<Number>,
     /// Viscous friction coefficient.
     pub damping: Option<Number>,
+    /// Coulomb (dry) friction, carried to the generated `JOINT_FRICTION`; it enters no
+    /// generated function.
+    pub friction: Option<Number>,
+    /// Position, velocity and effort limits, carried to the generated `JOINT_LIMITS`.
+    pub limits: Option<Limits>,
     /// `driven: true`: an actuator drives the coordinate, so the force analysis solves for
     /// its effort (in a mechanism without constraints every joint is driven).
     pub driven: Option<(bool, Span)>,
+}
+
+/// `limits: { lower: .., upper: .., velocity: .., effort: .. }` on a revolute or prismatic
+/// joint: each entry optional, a missing one unbounded. Constants (not parameters).
+#[derive(Clone, Debug)]
+pub struct Limits {
+    /// Lowest position (rad or m).
+    pub lower: Option<Number>,
+    /// Highest position (rad or m).
+    pub upper: Option<Number>,
+    /// Largest |velocity| (rad/s or m/s).
+    pub velocity: Option<Number>,
+    /// Largest |effort| (N·m or N).
+    pub effort: Option<Number>,
+    /// The whole `{ .. }` block.
+    pub span: SpanRange,
 }
 
 /// What an applied load is made of.

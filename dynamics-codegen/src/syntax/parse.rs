@@ -33,7 +33,10 @@ impl Parse for Mechanism {
             analysis: None,
             isa: None,
         };
-        let mut floating_base: Option<bool> = None;
+        // `floating_base:` and `urdf_damping:`, each with the span of its keyword: they
+        // apply to the `urdf:` file, so they are errors without one.
+        let mut floating_base: Option<(bool, Span)> = None;
+        let mut urdf_damping: Option<(bool, Span)> = None;
         // Each setting once: the name and the span of its first occurrence.
         let mut given: Vec<(String, Span)> = Vec::new();
         while !input.is_empty() {
@@ -98,9 +101,15 @@ impl Parse for Mechanism {
                             mechanism.urdf = Some(UrdfSource {
                                 path,
                                 floating_base: false,
+                                damping: true,
                             });
                         }
-                        "floating_base" => floating_base = Some(input.parse::<LitBool>()?.value),
+                        "floating_base" => {
+                            floating_base = Some((parse_flag(input, setting)?, keyword.span()))
+                        }
+                        "urdf_damping" => {
+                            urdf_damping = Some((parse_flag(input, setting)?, keyword.span()))
+                        }
                         "force_analysis" => {
                             let plane: Ident = input.parse()?;
                             let kind = match plane.to_string().as_str() {
@@ -156,15 +165,40 @@ impl Parse for Mechanism {
         mechanism.docs = docs;
         mechanism.visibility = visibility;
         mechanism.name = name;
-        if let (Some(urdf), Some(fb)) = (&mut mechanism.urdf, floating_base) {
-            urdf.floating_base = fb;
+        match &mut mechanism.urdf {
+            Some(urdf) => {
+                if let Some((flag, _)) = floating_base {
+                    urdf.floating_base = flag;
+                }
+                if let Some((flag, _)) = urdf_damping {
+                    urdf.damping = flag;
+                }
+            }
+            None => {
+                let misplaced = [
+                    ("floating_base", floating_base),
+                    ("urdf_damping", urdf_damping),
+                ];
+                if let Some((setting, span)) = misplaced
+                    .into_iter()
+                    .find_map(|(setting, given)| given.map(|(_, span)| (setting, span)))
+                {
+                    return Err(syn::Error::new(
+                        span,
+                        format!(
+                            "`{setting}` applies to a URDF file, and this mechanism imports none; \
+                             add `urdf: \"path/to/robot.urdf\";` or remove `{setting}`"
+                        ),
+                    ));
+                }
+            }
         }
         Ok(mechanism)
     }
 }
 
 /// The mechanism settings, `name: value;`, each given at most once.
-const SETTINGS: [&str; 9] = [
+const SETTINGS: [&str; 10] = [
     "gravity",
     "outputs",
     "frames",
@@ -172,9 +206,21 @@ const SETTINGS: [&str; 9] = [
     "allow",
     "urdf",
     "floating_base",
+    "urdf_damping",
     "force_analysis",
     "isa",
 ];
+
+/// The value of a yes-or-no setting: `true` or `false`.
+fn parse_flag(input: ParseStream, setting: &str) -> syn::Result<bool> {
+    let flag: LitBool = input.parse().map_err(|e| {
+        syn::Error::new(
+            e.span(),
+            format!("expected `true` or `false` after `{setting}:`"),
+        )
+    })?;
+    Ok(flag.value)
+}
 
 /// The item keywords, each followed by a name.
 const ITEMS: [&str; 5] = ["body", "joint", "load", "constraint", "frame"];
@@ -810,6 +856,8 @@ fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
         rotation: None,
         armature: None,
         damping: None,
+        friction: None,
+        limits: None,
         driven: None,
     };
     if !input.peek(syn::token::Brace) {
@@ -823,6 +871,8 @@ fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
             "rotation" => joint.rotation = Some(parse_rotation(content)?),
             "armature" => joint.armature = Some(parse_number(content)?),
             "damping" => joint.damping = Some(parse_number(content)?),
+            "friction" => joint.friction = Some(parse_number(content)?),
+            "limits" => joint.limits = Some(parse_limits(content)?),
             "driven" => {
                 let flag: LitBool = content.parse()?;
                 joint.driven = Some((flag.value, flag.span()));
@@ -834,10 +884,43 @@ fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
     .map_err(|e| {
         with_hint(
             e,
-            "joint fields are axis, at, rotation, armature, damping, driven",
+            "joint fields are axis, at, rotation, armature, damping, friction, limits, driven",
         )
     })?;
     Ok(joint)
+}
+
+/// `{ lower: .., upper: .., velocity: .., effort: .. }`, each entry optional.
+fn parse_limits(input: ParseStream) -> syn::Result<Limits> {
+    let (mut lower, mut upper, mut velocity, mut effort) = (None, None, None, None);
+    let span = parse_fields(input, |field, content| {
+        let slot = match field.to_string().as_str() {
+            "lower" => &mut lower,
+            "upper" => &mut upper,
+            "velocity" => &mut velocity,
+            "effort" => &mut effort,
+            _ => return Ok(false),
+        };
+        *slot = Some(parse_number(content)?);
+        Ok(true)
+    })
+    .map_err(|e| {
+        // Named a limit, not a field, so that the joint's hint is not added after it.
+        match e.to_string().strip_prefix("unknown field") {
+            Some(rest) => syn::Error::new(
+                e.span(),
+                format!("unknown limit{rest}; the limits are lower, upper, velocity, effort"),
+            ),
+            None => e,
+        }
+    })?;
+    Ok(Limits {
+        lower,
+        upper,
+        velocity,
+        effort,
+        span,
+    })
 }
 
 /// `load name: force|couple|wrench on body [at [x, y, z]] [in world | in body];`, the

@@ -1,10 +1,12 @@
 //! Building a validated [`Model`] from declared bodies, joints, operational frames and
 //! applied loads.
 //!
-//! `build` checks every rule of [`super::rules`], resolves names, orders the bodies so that
-//! `parent[i] < i` (depth first, in declaration order, as Pinocchio orders URDF trees), merges
-//! bodies joined by fixed joints into composite bodies (parallel-axis theorem), numbers
-//! the coordinates, places every frame (each declared body's, then each declared
+//! `build` checks every rule of [`super::rules`] (the inertia rules on the bodies as merged
+//! through fixed joints), resolves names, orders the bodies so that `parent[i] < i` (depth
+//! first, each subtree contiguous, children in declaration order: Pinocchio's order when
+//! the joints are declared as the URDF import declares them, sorted by name), merges bodies
+//! joined by fixed joints into composite bodies (parallel-axis theorem), numbers the
+//! coordinates, and places every frame (each declared body's, then each declared
 //! [`FrameSpec`]) on the tree body it moves with, and every [`LoadSpec`] likewise.
 
 use super::error::{ModelError, ModelErrors};
@@ -333,11 +335,13 @@ impl ModelBuilder {
             rules::body_numbers_are_finite(body, errors);
             rules::mass_is_not_negative(body, errors);
             rules::inertia_is_symmetric(body, errors);
-            rules::inertia_is_positive(body, errors);
-            if !self.skip_triangle_inequality {
-                rules::inertia_satisfies_triangle(body, errors);
-            }
         }
+        rules::merged_inertias_are_physical(
+            &self.bodies,
+            &self.joints,
+            !self.skip_triangle_inequality,
+            errors,
+        );
         for joint in &self.joints {
             rules::joint_numbers_are_finite(joint, errors);
             rules::axis_is_nonzero(joint, errors);

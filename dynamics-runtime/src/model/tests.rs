@@ -112,6 +112,80 @@ fn inertia_not_positive() {
     assert!(m.contains("not positive semi-definite"), "{m}");
 }
 
+/// A placeholder `base` (alone, 1e-6 + 1e-6 < 1e-5) welded to `trunk` with `inertia`, on a
+/// free joint, and a leg on a revolute joint.
+fn placeholder_base(trunk: [[f64; 3]; 3]) -> ModelBuilder {
+    let diagonal = |d: [f64; 3]| [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
+    ModelBuilder::new()
+        .body(BodySpec::new(
+            "base",
+            Inertia::new(0.001, [0.0; 3], diagonal([1e-6, 1e-6, 1e-5])),
+        ))
+        .body(BodySpec::new(
+            "trunk",
+            Inertia::new(6.0, [0.01, 0.0, 0.02], trunk),
+        ))
+        .body(rod("leg"))
+        .joint(JointSpec::free_flyer("root", "base"))
+        .joint(JointSpec::fixed("weld", "base", "trunk").at([0.02, 0.0, 0.01]))
+        .joint(JointSpec::revolute("hip", "trunk", "leg", [0.0, 1.0, 0.0]))
+}
+
+#[test]
+fn inertia_rules_judge_bodies_merged_through_fixed_joints() {
+    let model = placeholder_base([[0.05, 0.0, 0.0], [0.0, 0.12, 0.0], [0.0, 0.0, 0.14]])
+        .build()
+        .expect("the merged body is physical");
+    assert_eq!(model.bodies()[0].inertia.mass, 6.001);
+    let (e, m) = only_error(placeholder_base([
+        [0.1, 0.0, 0.0],
+        [0.0, 0.1, 0.0],
+        [0.0, 0.0, 0.3],
+    ]));
+    assert!(
+        matches!(e, ModelError::TriangleInequality { ref body, ref welded, .. }
+            if body == "base" && welded == &["trunk"]),
+        "{e:?}"
+    );
+    assert!(
+        m.starts_with("body `base` merged with `trunk` (welded through fixed joints): principal"),
+        "{m}"
+    );
+    // Welded to the ground, the bodies are merged too.
+    let ground = |kind: JointType| {
+        let mut weld = JointSpec::revolute("bolt", GROUND, "trunk", [0.0, 0.0, 1.0]);
+        weld.kind = kind;
+        ModelBuilder::new()
+            .body(BodySpec::new(
+                "stand",
+                Inertia::new(
+                    0.001,
+                    [0.0; 3],
+                    [[1e-6, 0.0, 0.0], [0.0, 1e-6, 0.0], [0.0, 0.0, 1e-5]],
+                ),
+            ))
+            .body(BodySpec::new(
+                "trunk",
+                Inertia::new(
+                    2.0,
+                    [0.0, 0.0, 0.1],
+                    [[0.05, 0.0, 0.0], [0.0, 0.05, 0.0], [0.0, 0.0, 0.05]],
+                ),
+            ))
+            .body(rod("leg"))
+            .joint(JointSpec::fixed("stand_weld", GROUND, "stand"))
+            .joint(weld)
+            .joint(JointSpec::revolute("hip", "trunk", "leg", [0.0, 1.0, 0.0]))
+    };
+    ground(JointType::Fixed).build().expect("merged, physical");
+    let (e, _) = only_error(ground(JointType::Revolute));
+    assert!(
+        matches!(e, ModelError::TriangleInequality { ref body, ref welded, .. }
+            if body == "stand" && welded.is_empty()),
+        "{e:?}"
+    );
+}
+
 #[test]
 fn triangle_inequality() {
     let (e, m) = only_error(with_body_inertia(
