@@ -11,6 +11,12 @@
 //!   centre of mass along q ⊕ δ (the free base moved on its manifold by
 //!   `integrate_configuration`), J̇ v against central differences of J v along the motion,
 //!   and A_G q̇ against the bodies' momentum summed from the placements and Jacobians;
+//! - the compact WORLD Jacobians `joint_jacobians_world` (Pinocchio's `data.J`) and
+//!   `joint_jacobians_world_time_variation` (`data.J`, `data.dJ`): every column that moves
+//!   body i is Pinocchio's J_i column taken to the world origin, [v + p_i × ω; ω], and
+//!   Σ_c J̇[:, c] v_c of body i, taken back to its origin as a classical acceleration
+//!   (a_P = a_O + α × p_i + ω × v_P), is Pinocchio's J̇_i v; on the free tree J̇ against
+//!   central differences of J along q ⊕ t v;
 //! - `forward_kinematics(q, v, a)` on all six: its placements and velocities are those of
 //!   `joint_placements` and `joint_velocities`, its accelerations J a + J̇ v from
 //!   `joint_jacobians` and `joint_acceleration_biases` (the three checked above).
@@ -22,39 +28,39 @@ use serde::Deserialize;
 mechanism! {
     pub struct PendulumKinematics;
     urdf: "../models/urdf/pendulum.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics, joint_jacobians_world, joint_jacobians_world_time_variation];
 }
 
 mechanism! {
     pub struct DoublePendulumKinematics;
     urdf: "../models/urdf/double_pendulum.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics, joint_jacobians_world, joint_jacobians_world_time_variation];
 }
 
 mechanism! {
     pub struct Planar3Kinematics;
     urdf: "../models/urdf/planar3.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics, joint_jacobians_world, joint_jacobians_world_time_variation];
     allow: [triangle_inequality];
 }
 
 mechanism! {
     pub struct Ur5Kinematics;
     urdf: "../models/urdf/ur5.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics, joint_jacobians_world, joint_jacobians_world_time_variation];
 }
 
 mechanism! {
     pub struct PandaKinematics;
     urdf: "../models/urdf/panda.urdf";
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics, joint_jacobians_world, joint_jacobians_world_time_variation];
 }
 
 mechanism! {
     /// A free-floating base with two branches, one ending in a slider; offset mass centres
     /// and a rotated placement, so that no term vanishes by symmetry.
     pub struct FreeTreeKinematics;
-    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics];
+    outputs: [center_of_mass, center_of_mass_jacobian, joint_placements, joint_jacobians, centroidal_momentum_matrix, joint_velocities, joint_acceleration_biases, forward_kinematics, joint_jacobians_world, joint_jacobians_world_time_variation];
     body base { mass: 3.0, com: [0.01, 0.02, -0.03], inertia: [[0.1, 0.01, 0.0], [0.01, 0.12, 0.02], [0.0, 0.02, 0.09]] }
     body left { mass: 1.0, com: [0.1, 0.0, 0.0], shape: rod(length: 0.2, axis: x) }
     body right { mass: 0.7, com: [0.0, 0.05, 0.01], shape: box(size: [0.05, 0.1, 0.02]) }
@@ -610,5 +616,176 @@ fn forward_kinematics_is_the_placements_velocities_and_accelerations() {
             free_tree::acceleration(k),
         );
         forward_kinematics_of!(FreeTreeKinematics, "free tree", &q, &v, &a);
+    }
+}
+
+type Matrix<const NV: usize> = [[f64; NV]; 6];
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn column<const NV: usize>(m: &Matrix<NV>, c: usize) -> ([f64; 3], [f64; 3]) {
+    ([m[0][c], m[1][c], m[2][c]], [m[3][c], m[4][c], m[5][c]])
+}
+
+#[track_caller]
+fn assert_within(got: f64, expected: f64, tolerance: f64, what: &dyn Fn() -> String) {
+    assert!(
+        (got - expected).abs() <= tolerance,
+        "{}: {got} against {expected}",
+        what()
+    );
+}
+
+/// The J of the two outputs agree (to rounding: each function's code is scheduled on its
+/// own).
+fn assert_same<const NV: usize>(a: &Matrix<NV>, b: &Matrix<NV>, what: &dyn Fn() -> String) {
+    for r in 0..6 {
+        for c in 0..NV {
+            assert_within(a[r][c], b[r][c], 1e-15, &|| {
+                format!("{} J[{r}][{c}]", what())
+            });
+        }
+    }
+}
+
+/// One anchor robot's J and J̇ against Pinocchio's values (see the file's doc).
+fn check_world_jacobians<const NQ: usize, const NV: usize>(
+    name: &str,
+    world: fn(&[f64; NQ]) -> Matrix<NV>,
+    time_variation: fn(&[f64; NQ], &[f64; NV]) -> (Matrix<NV>, Matrix<NV>),
+) {
+    let samples = samples(name);
+    assert!(!samples.is_empty(), "{name}: no samples");
+    for (k, sample) in samples.iter().enumerate() {
+        let q: [f64; NQ] = sample.q.clone().try_into().expect("nq matches");
+        let v: [f64; NV] = sample.v.clone().try_into().expect("nv matches");
+        let j = world(&q);
+        let (j_again, j_dot) = time_variation(&q, &v);
+        assert_same(&j, &j_again, &|| format!("{name} sample {k}"));
+        let mut checked = [false; NV];
+        for (b, lwa) in sample.joint_jacobians_world.iter().enumerate() {
+            let p = sample.joint_placements[b].translation;
+            let moves = |c: usize| (0..6).any(|r| lwa[r][c] != 0.0);
+            for c in (0..NV).filter(|&c| moves(c)) {
+                checked[c] = true;
+                let omega = [lwa[3][c], lwa[4][c], lwa[5][c]];
+                let shift = cross(p, omega);
+                for r in 0..3 {
+                    let what = || format!("{name} sample {k} body {b} J[{r}][{c}]");
+                    assert_within(j[r][c], lwa[r][c] + shift[r], 1e-12, &what);
+                    let what = || format!("{name} sample {k} body {b} J[{}][{c}]", 3 + r);
+                    assert_within(j[3 + r][c], omega[r], 1e-12, &what);
+                }
+            }
+            // Body b's spatial acceleration at the origin (a = 0), then its classical
+            // acceleration at p_b: a_P = a_O + α × p + ω × v_P, with [v_P; ω] = J_b v.
+            let (mut a_origin, mut alpha) = ([0.0; 3], [0.0; 3]);
+            let (mut v_point, mut omega) = ([0.0; 3], [0.0; 3]);
+            for c in (0..NV).filter(|&c| moves(c)) {
+                let (lin, ang) = column(&j_dot, c);
+                for r in 0..3 {
+                    a_origin[r] += lin[r] * v[c];
+                    alpha[r] += ang[r] * v[c];
+                    v_point[r] += lwa[r][c] * v[c];
+                    omega[r] += lwa[3 + r][c] * v[c];
+                }
+            }
+            let (turn, carry) = (cross(alpha, p), cross(omega, v_point));
+            let expected = &sample.joint_jacobian_time_derivative_times_v_world[b];
+            for r in 0..3 {
+                let what = || format!("{name} sample {k} body {b} J̇v[{r}]");
+                assert_within(a_origin[r] + turn[r] + carry[r], expected[r], 1e-12, &what);
+                let what = || format!("{name} sample {k} body {b} J̇v[{}]", 3 + r);
+                assert_within(alpha[r], expected[3 + r], 1e-12, &what);
+            }
+        }
+        assert!(checked.iter().all(|&c| c), "{name}: a column moves no body");
+    }
+}
+
+#[test]
+fn world_jacobians_and_their_rates_match_pinocchio() {
+    check_world_jacobians(
+        "pendulum",
+        PendulumKinematics::joint_jacobians_world,
+        PendulumKinematics::joint_jacobians_world_time_variation,
+    );
+    check_world_jacobians(
+        "double_pendulum",
+        DoublePendulumKinematics::joint_jacobians_world,
+        DoublePendulumKinematics::joint_jacobians_world_time_variation,
+    );
+    check_world_jacobians(
+        "planar3",
+        Planar3Kinematics::joint_jacobians_world,
+        Planar3Kinematics::joint_jacobians_world_time_variation,
+    );
+    check_world_jacobians(
+        "ur5",
+        Ur5Kinematics::joint_jacobians_world,
+        Ur5Kinematics::joint_jacobians_world_time_variation,
+    );
+    check_world_jacobians(
+        "panda",
+        PandaKinematics::joint_jacobians_world,
+        PandaKinematics::joint_jacobians_world_time_variation,
+    );
+}
+
+/// On the free tree J̇ is the derivative of J along the motion: J(q ⊕ h v) against
+/// J(q ⊖ h v) by central differences.
+#[test]
+fn world_jacobian_rates_of_a_free_tree_are_the_derivatives() {
+    let h = 1e-6;
+    for k in 0..6 {
+        let q = free_tree::configuration(k);
+        let v = free_tree::velocity(k);
+        let (j, j_dot) = FreeTreeKinematics::joint_jacobians_world_time_variation(&q, &v);
+        assert_same(&j, &FreeTreeKinematics::joint_jacobians_world(&q), &|| {
+            format!("q {q:?}")
+        });
+        let plus = FreeTreeKinematics::joint_jacobians_world(&free_tree::moved(&q, &v, h));
+        let minus = FreeTreeKinematics::joint_jacobians_world(&free_tree::moved(&q, &v, -h));
+        for r in 0..6 {
+            for c in 0..9 {
+                let rate = (plus[r][c] - minus[r][c]) / (2.0 * h);
+                let what = || format!("q {q:?} J̇[{r}][{c}]");
+                assert_within(j_dot[r][c], rate, 1e-7, &what);
+            }
+        }
+    }
+}
+
+/// J v of the free tree is the base's velocity at the world origin (columns 0..6: the
+/// base's v = [v_P; ω] in its own frame, moved to the origin in world axes: R v_P + p × R ω),
+/// checked column by column against the base's placement; and J̇ vanishes at v = 0.
+#[test]
+fn world_jacobian_of_the_free_base_is_its_twist_at_the_origin() {
+    for k in 0..6 {
+        let q = free_tree::configuration(k);
+        let j = FreeTreeKinematics::joint_jacobians_world(&q);
+        let (_, j_dot) = FreeTreeKinematics::joint_jacobians_world_time_variation(&q, &[0.0; 9]);
+        assert!(j_dot.iter().flatten().all(|&x| x == 0.0), "J̇ at v = 0");
+        let rotation = FreeTreeKinematics::joint_placements(&q)[0].0;
+        let p = [q[0], q[1], q[2]];
+        for e in 0..3 {
+            let axis = [rotation[0][e], rotation[1][e], rotation[2][e]];
+            let (lin, ang) = column(&j, e);
+            let (lin_spin, ang_spin) = column(&j, 3 + e);
+            let moment = cross(p, axis);
+            for r in 0..3 {
+                let what = || format!("q {q:?} column {e} row {r}");
+                assert_within(lin[r], axis[r], 1e-14, &what);
+                assert_within(ang[r], 0.0, 0.0, &what);
+                assert_within(lin_spin[r], moment[r], 1e-14, &what);
+                assert_within(ang_spin[r], axis[r], 1e-14, &what);
+            }
+        }
     }
 }

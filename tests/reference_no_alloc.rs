@@ -2,9 +2,11 @@
 //! (this test binary's own, so it holds a single test) sees no allocation, reallocation or
 //! deallocation during any method of [`Reference`] after [`Reference::new`], from the first
 //! call on, for a fixed-base arm (the UR5 anchor) and for a tree with a free-flyer root,
-//! revolute and prismatic joints, armature and damping.
+//! revolute and prismatic joints, armature, damping and loads in body and world axes.
 
-use dynamics_runtime::{BodySpec, Inertia, JointSpec, Model, ModelBuilder, Reference, Wrench};
+use dynamics_runtime::{
+    BodySpec, Inertia, JointSpec, LoadSpec, Model, ModelBuilder, Reference, Wrench,
+};
 use dynamics_tests::anchors;
 use nalgebra::{DMatrix, Vector3};
 use stats_alloc::{Region, StatsAlloc, INSTRUMENTED_SYSTEM};
@@ -47,6 +49,12 @@ fn floating_tree() -> Model {
                 .with_damping(1.0),
         )
         .joint(JointSpec::revolute("hip", "base", "leg", [1.0, 0.0, 0.0]).at([0.0, 0.1, -0.2]))
+        .load(LoadSpec::force("push", "slider").at([0.05, 0.0, 0.1]))
+        .load(
+            LoadSpec::wrench("wind", "leg")
+                .at([0.0, 0.2, 0.0])
+                .in_world(),
+        )
         .build()
         .expect("valid model")
 }
@@ -60,6 +68,10 @@ fn exercise(reference: &mut Reference<f64>, q: &[f64], v: &[f64], a: &[f64]) -> 
     let mut qdd = vec![0.0; nv];
     let mut matrix = DMatrix::zeros(nv, nv);
     let mut reactions = vec![Wrench::zero(); n];
+    let loads: Vec<f64> = (0..reference.model().num_load_inputs())
+        .map(|k| 0.5 * k as f64 - 1.0)
+        .collect();
+    let mut load_forces = vec![0.0; nv];
 
     let region = Region::new(GLOBAL);
     reference
@@ -88,6 +100,9 @@ fn exercise(reference: &mut Reference<f64>, q: &[f64], v: &[f64], a: &[f64]) -> 
     reference
         .joint_reactions(q, v, a, Some(&wrenches), &mut reactions)
         .expect("sizes match");
+    reference
+        .generalized_load_forces(q, &loads, &mut load_forces)
+        .expect("sizes match");
     let x = reference.body_poses(q).expect("sizes match")[n - 1]
         .origin_in_world
         .x;
@@ -105,7 +120,7 @@ fn exercise(reference: &mut Reference<f64>, q: &[f64], v: &[f64], a: &[f64]) -> 
         (0, 0, 0),
         "the reference allocated: {change:?}"
     );
-    energy + x + qdd[0] + matrix[(0, 0)] + reactions[0].force.x
+    energy + x + qdd[0] + matrix[(0, 0)] + reactions[0].force.x + load_forces[0]
 }
 
 #[test]

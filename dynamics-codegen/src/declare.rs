@@ -1,12 +1,14 @@
 //! Emits what a mechanism declares independently of its dynamics: the type, its doc
 //! comments, its `Mechanism` implementation (sizes, names, nominal parameters) and the
-//! runtime `Model` rebuilt from the same numbers.
+//! runtime `Model` rebuilt from the same numbers (bodies, joints, frames and loads).
 //!
 //! The runtime `Model` is built from the declaration as written (fixed joints included,
 //! numbers affine in the parameters), so the runtime merges and validates it on its own:
 //! that is what lets the reference catch a mistake of the compiler.
 
-use crate::model::{DeclaredBody, DeclaredFrame, DeclaredJoint, Mat3, Model, Value, Vec3};
+use crate::model::{
+    DeclaredBody, DeclaredFrame, DeclaredJoint, Load, LoadFrame, LoadKind, Mat3, Model, Value, Vec3,
+};
 use crate::syntax::JointKind;
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
@@ -23,6 +25,41 @@ pub fn float_literal(x: f64) -> TokenStream {
     } else {
         quote!(::core::f64::NAN)
     }
+}
+
+/// A literal of a limit: as [`float_literal`], infinities as `f64::INFINITY`.
+fn limit_literal(x: f64) -> TokenStream {
+    if x == f64::INFINITY {
+        quote!(::core::f64::INFINITY)
+    } else if x == f64::NEG_INFINITY {
+        quote!(::core::f64::NEG_INFINITY)
+    } else {
+        float_literal(x)
+    }
+}
+
+/// A limit for the docs: `∞` and `−∞` for the unbounded ones.
+fn limit_text(x: f64) -> String {
+    if x == f64::INFINITY {
+        "∞".to_owned()
+    } else if x == f64::NEG_INFINITY {
+        "-∞".to_owned()
+    } else {
+        format!("{x}")
+    }
+}
+
+/// Each velocity coordinate's limits and Coulomb friction, in the order of v (a free
+/// joint's six unbounded and frictionless).
+fn coordinate_limits(model: &Model) -> Vec<(crate::model::JointLimits, f64)> {
+    model
+        .bodies
+        .iter()
+        .flat_map(|b| {
+            let j = &b.joint;
+            std::iter::repeat_n((j.limits, j.friction), j.kind.dofs())
+        })
+        .collect()
 }
 
 /// `constant + Σ coefficient · parameters[k]` as an f64 expression.
@@ -92,6 +129,20 @@ fn frame_tokens(rt: &TokenStream, f: &DeclaredFrame) -> TokenStream {
     }
 }
 
+fn load_tokens(rt: &TokenStream, l: &Load) -> TokenStream {
+    let (name, body) = (&l.name, &l.declared_body);
+    let constructor = match l.kind {
+        LoadKind::Force => quote!(force),
+        LoadKind::Couple => quote!(couple),
+        LoadKind::Wrench => quote!(wrench),
+    };
+    let point = vec_tokens(&l.declared_point);
+    let in_world = (l.frame == LoadFrame::World).then(|| quote!(.in_world()));
+    quote! {
+        .load(#rt::LoadSpec::#constructor(#name, #body).at(#point) #in_world)
+    }
+}
+
 /// The type's documentation: the user's doc comments, then the coordinates (which entries of
 /// q and v each joint owns) and the bodies, each with its own doc comments.
 fn documentation(model: &Model) -> Vec<String> {
@@ -137,13 +188,15 @@ fn documentation(model: &Model) -> Vec<String> {
         lines.push(String::new());
         lines.push(
             " Each load's components are consecutive entries of the `loads` argument, in the \
-             frame of the body it was declared on; a force acts at the load's point (in that \
-             frame), a couple is free."
+             axes its `in` column names: `body`, the axes of the body it was declared on (the \
+             default), or `world`, the world's fixed axes (declared `in world`). A force acts \
+             at the load's point, given in the body's frame and fixed on the body; a couple is \
+             free."
                 .into(),
         );
         lines.push(String::new());
-        lines.push(" | load | acts on | at | `loads` entries |".into());
-        lines.push(" | --- | --- | --- | --- |".into());
+        lines.push(" | load | acts on | at | in | `loads` entries |".into());
+        lines.push(" | --- | --- | --- | --- | --- |".into());
         for load in &model.loads {
             let (o, n) = (load.input_offset, load.kind.input_count());
             let entries = match load.kind {
@@ -164,8 +217,12 @@ fn documentation(model: &Model) -> Vec<String> {
                     }
                 })
                 .collect();
+            let axes = match load.frame {
+                crate::model::LoadFrame::Body => "body",
+                crate::model::LoadFrame::World => "world",
+            };
             lines.push(format!(
-                " | `{}` | `{}` | [{}] | {entries} |",
+                " | `{}` | `{}` | [{}] | {axes} | {entries} |",
                 load.name,
                 load.declared_body,
                 at.join(", ")
@@ -199,17 +256,63 @@ fn documentation(model: &Model) -> Vec<String> {
             lines.push(format!(" `{}`:{}", frame.name, frame.docs.join(" ")));
         }
     }
-    let documented: Vec<(&str, &[String])> = model
+    let limited: Vec<&crate::model::Joint> = model
         .bodies
         .iter()
-        .flat_map(|b| {
-            [
-                (b.joint.name.as_str(), b.joint.docs.as_slice()),
-                (b.name.as_str(), b.docs.as_slice()),
-            ]
-        })
-        .filter(|(_, docs)| !docs.is_empty())
+        .map(|b| &b.joint)
+        .filter(|j| j.limits.is_bounded() || j.friction != 0.0)
         .collect();
+    if !limited.is_empty() {
+        lines.push(String::new());
+        lines.push(" # Limits and friction".into());
+        lines.push(String::new());
+        lines.push(
+            " Each coordinate's limits (`JOINT_LIMITS`) and Coulomb friction (`JOINT_FRICTION`), \
+             as declared; the coordinates not listed have none. No generated function enforces \
+             the limits or includes the friction."
+                .into(),
+        );
+        lines.push(String::new());
+        lines.push(" | joint | v | position | velocity | effort | friction |".into());
+        lines.push(" | --- | --- | --- | --- | --- | --- |".into());
+        for j in limited {
+            let l = &j.limits;
+            lines.push(format!(
+                " | `{}` | v[{}] | [{}, {}] | {} | {} | {} |",
+                j.name,
+                j.idx_v,
+                limit_text(l.lower),
+                limit_text(l.upper),
+                limit_text(l.velocity),
+                limit_text(l.effort),
+                j.friction
+            ));
+        }
+    }
+    // Each moving joint and body, then the fixed joints and bodies welded into it; the
+    // bodies welded to the ground first.
+    let nominal: Vec<f64> = model.parameters.iter().map(|p| p.nominal).collect();
+    let welded = |parts: &[crate::model::Part]| -> Vec<(String, Vec<String>)> {
+        parts
+            .iter()
+            .flat_map(|part| {
+                part.weld
+                    .clone()
+                    .into_iter()
+                    .chain([(part.name.clone(), part.docs.clone())])
+            })
+            .collect()
+    };
+    let mut documented: Vec<(String, Vec<String>)> = welded(&model.ground_parts);
+    for b in &model.bodies {
+        documented.push((b.joint.name.clone(), b.joint.docs.clone()));
+        documented.push((
+            b.name.clone(),
+            b.documented(&nominal, model.skip_triangle_inequality),
+        ));
+        documented.extend(welded(b.parts.get(1..).unwrap_or_default()));
+    }
+    documented.retain(|(_, docs)| !docs.is_empty());
     if !documented.is_empty() {
         lines.push(String::new());
         lines.push(" # Bodies and joints".into());
@@ -336,12 +439,24 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
         let names = model.frames.iter().map(|f| &f.name);
         quote!(const FRAME_NAMES: &'static [&'static str] = &[#(#names),*];)
     });
+    let (limits, friction): (Vec<TokenStream>, Vec<TokenStream>) = coordinate_limits(model)
+        .into_iter()
+        .map(|(l, f)| {
+            let [lower, upper, velocity, effort] =
+                [l.lower, l.upper, l.velocity, l.effort].map(limit_literal);
+            (
+                quote!(#rt::JointLimits { lower: #lower, upper: #upper, velocity: #velocity, effort: #effort }),
+                float_literal(f),
+            )
+        })
+        .unzip();
     let num_load_inputs = model.load_inputs;
     let num_parameters = model.parameters.len();
     let gravity = model.gravity_in_world.map(float_literal);
     let bodies = model.declared_bodies.iter().map(|b| body_tokens(rt, b));
     let joints = model.declared_joints.iter().map(|j| joint_tokens(rt, j));
     let frames = model.declared_frames.iter().map(|f| frame_tokens(rt, f));
+    let loads = model.loads.iter().map(|l| load_tokens(rt, l));
     let skip = model
         .skip_triangle_inequality
         .then(|| quote!(.skip_triangle_inequality()));
@@ -373,6 +488,11 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
             const NOMINAL_PARAMETERS: &'static [f64] = &[#(#nominal),*];
             const LOAD_NAMES: &'static [&'static str] = &[#(#load_names),*];
             #frame_names
+            // The limits as written: a URDF's 6.28 is no attempt at τ.
+            #[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal)]
+            const JOINT_LIMITS: &'static [#rt::JointLimits] = &[#(#limits),*];
+            #[allow(clippy::approx_constant, clippy::excessive_precision, clippy::unreadable_literal)]
+            const JOINT_FRICTION: &'static [f64] = &[#(#friction),*];
             const NUM_LOAD_INPUTS: usize = #num_load_inputs;
             const FUNCTIONS: &'static [#rt::FunctionCost] = &[#(#functions),*];
 
@@ -405,6 +525,7 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
                     #(#bodies)*
                     #(#joints)*
                     #(#frames)*
+                    #(#loads)*
                     .build()
             }
             }

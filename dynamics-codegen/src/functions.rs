@@ -667,7 +667,7 @@ fn forward_dynamics_on(
     let tau = inputs(g, Array::Tau, nv);
     match method {
         ForwardMethod::ArticulatedBody => {
-            let external = rnea::load_wrenches(g, model, loads);
+            let external = rnea::load_wrenches(g, model, t, loads);
             let build =
                 |i: &[BodyInertia]| aba::forward_dynamics(g, model, t, i, &v, &tau, &external);
             build(&base_parameters::regroup(g, model, t, i, build))
@@ -1351,6 +1351,7 @@ pub(crate) mod tests {
             joint slide: prismatic(left -> slider) { axis: x, at: [0.2, 0.0, 0.0], damping: 0.5 }
             load push: wrench on slider at [0.01, 0.0, 0.02];
             load twist: couple on right;
+            load wind: wrench on left at [0.05, 0.0, 0.01] in world;
         };
         for tokens in [free_tree, chain(6, true, quote!([forward_dynamics]))] {
             let mechanism: crate::syntax::Mechanism = syn::parse2(tokens).expect("parses");

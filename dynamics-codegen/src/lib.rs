@@ -341,21 +341,30 @@ mod tests {
             /// The tool, welded on.
             body tool { mass: 0.2, shape: point }
             /// The shoulder.
-            joint shoulder: revolute(ground -> upper) { axis: z }
+            joint shoulder: revolute(ground -> upper) { axis: z, limits: { lower: -1.0 } }
+            /// The weld.
             joint weld: fixed(upper -> tool) { at: [0.4, 0.0, 0.0] }
+            /// The stand, welded to the ground.
+            body stand { mass: 1.0, shape: point }
+            joint bolt: fixed(ground -> stand);
+            frames: [upper];
         });
         for expected in [
             "/// A test arm.",
             "| `shoulder` | `upper` (with `tool`) | revolute about [0, 0, 1] | q[0] | v[0] |",
-            "`shoulder`: The shoulder.",
-            "`upper`: The upper arm.",
+            "| `shoulder` | v[0] | [-1, ∞] | ∞ | ∞ | 0 |",
+            // The bodies and fixed joints merged, into the ground or a moving body, too (the
+            // frames, which would list them too, are chosen otherwise).
+            "/// # Bodies and joints\n///\n/// `stand`: The stand, welded to the ground.\n///\n\
+             /// `shoulder`: The shoulder.\n///\n/// `upper`: The upper arm.\n///\n\
+             /// `weld`: The weld.\n///\n/// `tool`: The tool, welded on.\n",
             "pub fn inverse_dynamics_na<",
         ] {
             assert!(text.contains(expected), "missing {expected:?} in\n{text}");
         }
     }
 
-    /// A load's doc comment, body, point and input layout reach the type's docs.
+    /// A load's doc comment, body, point, axes and input layout reach the type's docs.
     #[test]
     fn loads_are_documented_with_their_inputs_and_frame() {
         let text = generated(quote! {
@@ -366,12 +375,12 @@ mod tests {
             joint weld: fixed(upper -> tool) { at: [0.4, 0.0, 0.0] }
             /// A push at the tip.
             load push: force on tool at [0.1, 0.0, 0.0];
-            load grip: wrench on upper;
+            load grip: wrench on upper in world;
         });
         for expected in [
             "/// # Loads",
-            "| `push` | `tool` | [0.1, 0, 0] | [0..3] = F |",
-            "| `grip` | `upper` | [0, 0, 0] | [3..6] = F, [6..9] = M |",
+            "| `push` | `tool` | [0.1, 0, 0] | body | [0..3] = F |",
+            "| `grip` | `upper` | [0, 0, 0] | world | [3..6] = F, [6..9] = M |",
             "`push`: A push at the tip.",
             "/// # Functions",
             "/// - [`Self::inverse_dynamics`]: ",

@@ -5,10 +5,20 @@
 //! Links become bodies (mass, c = the inertial origin, I_G rotated from the inertial frame
 //! into the link frame: I_G = R I Rᵀ); `revolute` and `continuous` joints become revolute
 //! joints, `prismatic` prismatic, `fixed` fixed (merged later into composite bodies); the
-//! joint origin gives the placement (translation and roll-pitch-yaw) and `<dynamics
-//! damping>` the viscous friction. The root link is welded to the ground, or given a free
-//! joint with `floating_base: true`. Mimic, planar, floating and spherical joints are
-//! refused: the tree expansion has no closed form for them.
+//! joint origin gives the placement (translation and roll-pitch-yaw), `<dynamics damping>`
+//! the viscous friction (dropped with `urdf_damping: false`, as Pinocchio's algorithms
+//! ignore it), `<dynamics friction>` the Coulomb friction and `<limit>` the limits (both
+//! carried to the generated constants, in no generated function; a `continuous` joint's
+//! position is unbounded, a fixed joint's limits and friction are not read). The root link
+//! is welded to the ground, or given a free joint with `floating_base: true`. Mimic, planar,
+//! floating and spherical joints are refused: the tree expansion has no closed form for
+//! them.
+//!
+//! Joints are declared sorted by name (byte order, stable), so that the tree, which takes
+//! a body's children in declaration order, orders siblings as Pinocchio does: its URDF
+//! parser walks the tree depth first and takes a link's child joints from urdfdom, which
+//! keeps them in a map sorted by name, whatever their order in the file. The coordinates
+//! of a branched URDF are thus Pinocchio's, each subtree contiguous.
 //!
 //! The XML is parsed by roxmltree; `read` maps its elements to URDF's meaning, as urdfdom
 //! and urdf-rs do: the `<link>` and `<joint>` children of the root element, matched by local
@@ -18,13 +28,16 @@
 //! the attribute takes, all finite (a word such as `O.2` or `nan` is an error naming the
 //! attribute, its element and the word, as urdfdom rejects it); a link without `<inertial>` has
 //! zero mass and inertia, a missing `<origin>` or attribute of it is zero (the identity),
-//! a missing `<axis>` is x; `quat_xyzw` replaces `rpy` from URDF 1.1 on; `<limit>`,
-//! `<visual>`, `<collision>`, `<calibration>` and `<safety_controller>` are not read. A
+//! a missing `<axis>` is x; a `<limit>`'s `lower` and `upper` are 0 when absent and its
+//! `velocity` and `effort` required (as URDF defines it), a joint without `<limit>` is
+//! unbounded (urdfdom requires one on revolute and prismatic joints; the dynamics need
+//! none); `quat_xyzw` replaces `rpy` from URDF 1.1 on; `<visual>`, `<collision>`,
+//! `<calibration>` and `<safety_controller>` are not read. A
 //! file that is not well-formed XML, or lacks an element or attribute URDF requires, is
 //! reported at its line and column; so is a root element other than `<robot>`.
 //!
 //! A `continuous` joint has **one** coordinate here, its angle, unbounded (the same
-//! coordinate as `revolute`, whose limits are not read). Pinocchio gives a continuous joint
+//! coordinate as `revolute`). Pinocchio gives a continuous joint
 //! two configuration coordinates, (cos θ, sin θ), and one velocity: configurations exchanged
 //! with Pinocchio must convert θ = atan2(sin, cos) for each continuous joint, and its NQ
 //! counts one per continuous joint more than this mechanism's.
@@ -35,8 +48,8 @@
 
 use crate::model::linear;
 use crate::syntax::{
-    self, Axis, Body, InertiaForm, Joint, JointKind, Matrix, Name, Number, Rotation, SpanRange,
-    Vector,
+    self, Axis, Body, InertiaForm, Joint, JointKind, Limits, Matrix, Name, Number, Rotation,
+    SpanRange, Vector,
 };
 use roxmltree::{Document, Node, TextPos};
 use std::path::{Path, PathBuf};
@@ -99,7 +112,11 @@ pub fn import(
             span: range,
         });
     }
-    for joint in &robot.joints {
+    // Sorted by name (stable): the tree takes a body's children in declaration order, and
+    // Pinocchio takes a link's child joints in name order (see the module's docs).
+    let mut joints: Vec<&UrdfJoint> = robot.joints.iter().collect();
+    joints.sort_by(|a, b| a.name.cmp(&b.name));
+    for joint in joints {
         let kind = match joint.kind {
             JointType::Revolute | JointType::Continuous => JointKind::Revolute,
             JointType::Prismatic => JointKind::Prismatic,
@@ -140,6 +157,32 @@ pub fn import(
                     .to_owned(),
             );
         }
+        if moving && joint.damping != 0.0 {
+            docs.push(if source.damping {
+                format!(
+                    " Its URDF damping b = {} enters the dynamics: b q̇ is in `inverse_dynamics` \
+                     and `bias`, and opposes the motion in `forward_dynamics` (Pinocchio's \
+                     `rnea`, `nle` and `aba` leave it out; `urdf_damping: false;` drops it).",
+                    joint.damping
+                )
+            } else {
+                format!(
+                    " Its URDF damping {} is dropped (`urdf_damping: false;`).",
+                    joint.damping
+                )
+            });
+        }
+        // A continuous joint has no position limits (urdfdom reads them, Pinocchio and the
+        // URDF specification ignore them); a fixed joint has no limits at all.
+        let bounded = matches!(joint.kind, JointType::Revolute | JointType::Prismatic);
+        let limits = joint.limit.as_ref().filter(|_| moving).map(|l| Limits {
+            lower: bounded.then(|| number(l.lower)),
+            upper: bounded.then(|| number(l.upper)),
+            velocity: Some(number(l.velocity)),
+            effort: Some(number(l.effort)),
+            span: range,
+        });
+        let coefficient = |x: f64| (moving && x != 0.0).then(|| number(x));
         mechanism.joints.push(Joint {
             docs,
             name: name(&joint.name),
@@ -154,7 +197,13 @@ pub fn import(
             at: Some(vector(joint.origin.xyz)),
             rotation: Some(Rotation::Rpy(joint.origin.rpy.map(number), range)),
             armature: None,
-            damping: (joint.damping != 0.0).then(|| number(joint.damping)),
+            damping: if source.damping {
+                coefficient(joint.damping)
+            } else {
+                None
+            },
+            friction: coefficient(joint.friction),
+            limits,
             driven: None,
         });
     }
@@ -188,6 +237,8 @@ pub fn import(
             rotation: None,
             armature: None,
             damping: None,
+            friction: None,
+            limits: None,
             driven: None,
         }),
         [] => refuse(no_root(&robot)),
@@ -305,8 +356,21 @@ struct UrdfJoint {
     axis: [f64; 3],
     /// `<dynamics damping>`, 0 when absent.
     damping: f64,
+    /// `<dynamics friction>`, 0 when absent.
+    friction: f64,
+    /// `<limit>`, when present.
+    limit: Option<UrdfLimit>,
     /// The joint named by `<mimic joint>`.
     mimic: Option<String>,
+}
+
+/// A `<limit>`: `lower` and `upper` 0 when absent, `velocity` and `effort` required, as
+/// URDF defines it.
+struct UrdfLimit {
+    lower: f64,
+    upper: f64,
+    velocity: f64,
+    effort: f64,
 }
 
 /// URDF's joint types.
@@ -694,11 +758,27 @@ impl<'a, 'input> Reader<'a, 'input> {
             }
             None => [1.0, 0.0, 0.0],
         };
-        let damping = match self.child(element, "dynamics", &owner)? {
-            Some(dynamics) => self
-                .number(dynamics, "damping", &format!("the `<dynamics>` of {owner}"))?
-                .unwrap_or(0.0),
-            None => 0.0,
+        let (damping, friction) = match self.child(element, "dynamics", &owner)? {
+            Some(dynamics) => {
+                let what = format!("the `<dynamics>` of {owner}");
+                (
+                    self.number(dynamics, "damping", &what)?.unwrap_or(0.0),
+                    self.number(dynamics, "friction", &what)?.unwrap_or(0.0),
+                )
+            }
+            None => (0.0, 0.0),
+        };
+        let limit = match self.child(element, "limit", &owner)? {
+            Some(limit) => {
+                let what = format!("the `<limit>` of {owner}");
+                Some(UrdfLimit {
+                    lower: self.number(limit, "lower", &what)?.unwrap_or(0.0),
+                    upper: self.number(limit, "upper", &what)?.unwrap_or(0.0),
+                    velocity: self.required_number(limit, "velocity", &what)?,
+                    effort: self.required_number(limit, "effort", &what)?,
+                })
+            }
+            None => None,
         };
         let mimic = match self.child(element, "mimic", &owner)? {
             Some(mimic) => Some(
@@ -715,6 +795,8 @@ impl<'a, 'input> Reader<'a, 'input> {
             child,
             axis,
             damping,
+            friction,
+            limit,
             mimic,
         })
     }
@@ -888,7 +970,7 @@ mod tests {
                 r#"<robot name="r"><link name="base"/>{}{}{}
                    <joint name="spin" type="continuous"><parent link="base"/><child link="a"/></joint>
                    <joint name="slide" type="prismatic"><parent link="a"/><child link="b"/>
-                     <axis xyz=" 0  1 0 "/><limit effort="1"/></joint>
+                     <axis xyz=" 0  1 0 "/><limit effort="1" velocity="2"/></joint>
                    <joint name="weld" type="fixed"><parent link="b"/><child link="c"/>
                      <axis xyz="0 0 1"/></joint>
                    </robot>"#,
@@ -898,7 +980,12 @@ mod tests {
             ),
         )
         .expect("imports");
-        let [spin, slide, weld] = [&m.joints[0], &m.joints[1], &m.joints[2]];
+        // Declared in name order, not the file's.
+        let [slide, spin, weld] = [&m.joints[0], &m.joints[1], &m.joints[2]];
+        assert_eq!(
+            [&spin.name.text, &slide.name.text, &weld.name.text],
+            ["spin", "slide", "weld"]
+        );
         assert_eq!(spin.kind, JointKind::Revolute);
         assert!(
             spin.docs.iter().any(|d| d.contains("Pinocchio")),
@@ -1079,20 +1166,132 @@ mod tests {
         }
     }
 
+    /// The numbers of a joint's limits: lower, upper, velocity, effort (`None` when absent).
+    fn limits(joint: &Joint) -> Option<[Option<f64>; 4]> {
+        joint
+            .limits
+            .as_ref()
+            .map(|l| [&l.lower, &l.upper, &l.velocity, &l.effort].map(|n| n.as_ref().map(constant)))
+    }
+
     #[test]
-    fn limits_and_other_unread_elements_are_not_checked() {
-        // URDF requires `velocity` in `<limit>`; the import does not read limits.
+    fn limits_and_friction_are_read() {
         let m = import_text(
             "limits",
             &format!(
-                r#"<robot name="r"><link name="base"/>{}
-                   <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
-                   <limit lower="1" upper="-1"/></joint></robot>"#,
-                link("arm")
+                r#"<robot name="r"><link name="base"/>{}{}{}{}
+                   <joint name="a" type="revolute"><parent link="base"/><child link="w"/>
+                     <limit lower="-1.5" upper="2" velocity="3" effort="40"/>
+                     <dynamics friction="0.25"/></joint>
+                   <joint name="b" type="continuous"><parent link="w"/><child link="x"/>
+                     <limit lower="-1" upper="1" velocity="5" effort="6"/></joint>
+                   <joint name="c" type="prismatic"><parent link="x"/><child link="y"/>
+                     <limit velocity="0.5" effort="100"/></joint>
+                   <joint name="d" type="fixed"><parent link="y"/><child link="z"/>
+                     <limit lower="-1" upper="1" velocity="5" effort="6"/>
+                     <dynamics damping="1" friction="2"/></joint>
+                   </robot>"#,
+                link("w"),
+                link("x"),
+                link("y"),
+                link("z")
             ),
         )
         .expect("imports");
-        assert_eq!(m.joints.len(), 2);
+        let [a, b, c, d] = [&m.joints[0], &m.joints[1], &m.joints[2], &m.joints[3]];
+        assert_eq!(
+            limits(a),
+            Some([Some(-1.5), Some(2.0), Some(3.0), Some(40.0)])
+        );
+        assert_eq!(a.friction.as_ref().map(constant), Some(0.25));
+        // A continuous joint's position is unbounded, whatever the file says.
+        assert_eq!(limits(b), Some([None, None, Some(5.0), Some(6.0)]));
+        assert!(b.friction.is_none());
+        // `lower` and `upper` are 0 when absent, as URDF defines them.
+        assert_eq!(
+            limits(c),
+            Some([Some(0.0), Some(0.0), Some(0.5), Some(100.0)])
+        );
+        // A fixed joint's limits, damping and friction are not read.
+        assert_eq!(limits(d), None);
+        assert!(d.friction.is_none() && d.damping.is_none());
+        let model = crate::model::lower(&m).expect("valid");
+        let tree: Vec<_> = model.bodies.iter().map(|b| &b.joint).collect();
+        assert_eq!(tree[1].limits.lower, f64::NEG_INFINITY);
+        assert_eq!(tree[1].limits.velocity, 5.0);
+        assert_eq!(tree[0].friction, 0.25);
+    }
+
+    #[test]
+    fn a_limit_needs_velocity_and_effort_and_must_be_ordered() {
+        let file = |limit: &str| {
+            format!(
+                r#"<robot name="r"><link name="base"/>{}
+                   <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+                   {limit}</joint></robot>"#,
+                link("arm")
+            )
+        };
+        let e = import_text(
+            "limit-velocity",
+            &file(r#"<limit lower="0" upper="1" effort="1"/>"#),
+        )
+        .expect_err("no velocity");
+        assert!(
+            e.to_string()
+                .ends_with("the `<limit>` of joint `j` has no `velocity`"),
+            "{e}"
+        );
+        // Imported, then rejected by the rules, which name the joint.
+        let m = import_text(
+            "limit-order",
+            &file(r#"<limit lower="1" upper="-1" velocity="1" effort="-2"/>"#),
+        )
+        .expect("imports");
+        let e = crate::model::lower(&m).expect_err("unordered");
+        let messages: Vec<String> = e.into_iter().map(|e| e.to_string()).collect();
+        assert_eq!(
+            messages,
+            [
+                "joint `j` has lower limit 1 above its upper limit -1; the lower limit must be ≤ \
+                 the upper",
+                "joint `j` has effort limit -2; it must be ≥ 0",
+            ]
+        );
+    }
+
+    #[test]
+    fn urdf_damping_false_drops_the_damping_only() {
+        let text = format!(
+            r#"<robot name="r"><link name="base"/>{}
+               <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+               <dynamics damping="0.7" friction="0.1"/></joint></robot>"#,
+            link("arm")
+        );
+        let m = import_text("damped", &text).expect("imports");
+        assert_eq!(m.joints[0].damping.as_ref().map(constant), Some(0.7));
+        assert!(
+            m.joints[0]
+                .docs
+                .iter()
+                .any(|d| d.contains("Pinocchio's `rnea`")),
+            "{:?}",
+            m.joints[0].docs
+        );
+        let dir = std::env::temp_dir().join(format!(
+            "dynamics-codegen-urdf-undamped-{}",
+            std::process::id()
+        ));
+        std::fs::create_dir_all(&dir).expect("temporary directory");
+        std::fs::write(dir.join("robot.urdf"), &text).expect("write URDF");
+        let mut m: syntax::Mechanism =
+            syn::parse2(quote! { struct R; urdf: "robot.urdf"; urdf_damping: false; })
+                .expect("parses");
+        let result = import(&mut m, &dir);
+        std::fs::remove_dir_all(&dir).expect("remove temporary directory");
+        result.expect("imports");
+        assert!(m.joints[0].damping.is_none());
+        assert_eq!(m.joints[0].friction.as_ref().map(constant), Some(0.1));
     }
 
     #[test]
@@ -1261,6 +1460,34 @@ mod tests {
             assert_eq!(names, [name, &format!("{name}_2"), &added]);
             crate::model::lower(&m).expect("no duplicate joint name");
         }
+    }
+
+    /// The coordinates come depth first, each link's child joints in name order, as
+    /// Pinocchio's URDF parser orders them, whatever the file's order (here breadth first,
+    /// and the hips not in name order, nor their links).
+    #[test]
+    fn joints_come_depth_first_in_name_order() {
+        let m = import_text(
+            "order",
+            &format!(
+                r#"<robot name="r"><link name="base"/>{}{}{}{}
+                   <joint name="fr_hip" type="revolute"><parent link="base"/><child link="a"/></joint>
+                   <joint name="fl_hip" type="revolute"><parent link="base"/><child link="b"/></joint>
+                   <joint name="fr_knee" type="revolute"><parent link="a"/><child link="c"/></joint>
+                   <joint name="fl_knee" type="revolute"><parent link="b"/><child link="d"/></joint>
+                   </robot>"#,
+                link("a"),
+                link("b"),
+                link("c"),
+                link("d")
+            ),
+        )
+        .expect("imports");
+        let model = crate::model::lower(&m).expect("valid");
+        let joints: Vec<&str> = model.bodies.iter().map(|b| b.joint.name.as_str()).collect();
+        assert_eq!(joints, ["fl_hip", "fl_knee", "fr_hip", "fr_knee"]);
+        let parents: Vec<Option<usize>> = model.bodies.iter().map(|b| b.parent).collect();
+        assert_eq!(parents, [None, Some(0), None, Some(2)]);
     }
 
     #[test]

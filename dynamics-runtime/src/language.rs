@@ -8,10 +8,10 @@
 //! | item | form |
 //! | --- | --- |
 //! | the type | `pub struct Name;` (exactly once; any visibility) |
-//! | a setting | `gravity: ..;`, `outputs: [..];`, `frames: [..];`, `parameters: [..];`, `allow: [..];`, `urdf: "..";`, `floating_base: ..;`, `force_analysis: ..;`, `isa: ..;` (each at most once) |
+//! | a setting | `gravity: ..;`, `outputs: [..];`, `frames: [..];`, `parameters: [..];`, `allow: [..];`, `urdf: "..";`, `floating_base: ..;`, `urdf_damping: ..;`, `force_analysis: ..;`, `isa: ..;` (each at most once) |
 //! | a body | `body name { mass: .., com: [..], inertia: .. }` or `{ .., shape: .. }` |
 //! | a joint | `joint name: kind(parent -> child) { .. }` or `joint name: kind(parent -> child);` |
-//! | a load | `load name: force on body at [x, y, z];` (also `couple`, `wrench`) |
+//! | a load | `load name: force on body at [x, y, z] in world;` (also `couple`, `wrench`; `at` and `in world` / `in body` optional) |
 //! | a constraint | `constraint name: kind(a at [..], b at [..]) { .. };` |
 //! | a frame | `frame name: on body at [x, y, z] rotation ..;` (`at`, `rotation` optional) |
 //!
@@ -205,10 +205,11 @@
 //! ## `allow`
 //!
 //! `allow: [triangle_inequality];` waives the one check that can be waived: that the
-//! principal moments of every inertia satisfy the triangle inequality (I1 + I2 ≥ I3, which
-//! every physical body does). Any other name is an error.
+//! principal moments of every body's inertia (as merged through fixed joints) satisfy the
+//! triangle inequality (I1 + I2 ≥ I3, which every physical body does). Any other name is
+//! an error.
 //!
-//! ## `urdf` and `floating_base`
+//! ## `urdf`, `floating_base` and `urdf_damping`
 //!
 //! `urdf: "path";` adds a URDF file's links (as bodies) and joints (as joints) to the
 //! declaration. The path is relative to the directory of the `Cargo.toml` of the crate that
@@ -217,6 +218,38 @@
 //! the ground by a joint `ground_weld`, or, with `floating_base: true;`, given a free joint
 //! `root_joint`. Mimic, planar, floating and spherical joints are refused. Every rule of the
 //! language applies to the imported bodies and joints, with errors at the path.
+//!
+//! What each joint's elements become:
+//!
+//! | URDF | here |
+//! | --- | --- |
+//! | `<origin>`, `<axis>` | `at`, `rotation`, `axis` |
+//! | `<dynamics damping>` | `damping`: viscous friction b, in the dynamics (see below) |
+//! | `<dynamics friction>` | `friction`: Coulomb friction, in `JOINT_FRICTION` only |
+//! | `<limit lower upper velocity effort>` | `limits`, in `JOINT_LIMITS` only; `lower` and `upper` 0 when absent, `velocity` and `effort` required, as URDF defines them; a `continuous` joint's position unbounded; no `<limit>`, no limits |
+//!
+//! **Damping and Pinocchio.** The URDF's damping b enters the dynamics as a declared
+//! `damping` does: `inverse_dynamics` and `bias` include b q̇, `forward_dynamics` subtracts
+//! it. Pinocchio reads the same number into `model.damping` but its `rnea`, `nle` and `aba`
+//! leave it out, so on a damped URDF `inverse_dynamics` is Pinocchio's `rnea` + b q̇.
+//! `urdf_damping: false;` drops the file's damping (the default, `true`, keeps it), and the
+//! functions then match Pinocchio's. `floating_base` and `urdf_damping` take `true` or
+//! `false` and apply to the `urdf:` file: either without one is an error.
+//!
+//! **Joint order.** The bodies, joints and coordinates are ordered depth first from the
+//! ground, each subtree contiguous, as Pinocchio orders them: a URDF link's child joints in
+//! the order of their names (byte by byte, `B` before `a`), which is the order Pinocchio's
+//! URDF parser takes them in (from urdfdom, which keeps them sorted by name), whatever their
+//! order in the file. So `JOINT_NAMES`, q and v are Pinocchio's, and a Pinocchio state can
+//! be used as it is (but for `continuous` joints, whose (cos θ, sin θ) is θ here). A
+//! declared mechanism's children come in declaration order.
+//!
+//! **Fixed joints.** A link welded through a fixed joint is merged into the body it is
+//! welded to (masses, mass centres and inertias combined), and the inertia rules judge the
+//! merged body, not each link: a link's placeholder inertia (a tiny diagonal that alone
+//! violates the triangle inequality, say) is accepted when the body it is welded into is
+//! physical, and the generated docs of that body say so. A merged body that is itself
+//! unphysical is an error.
 //!
 //! ```rust
 //! use dynamics_runtime::{mechanism, Mechanism};
@@ -232,6 +265,10 @@
 //! assert_eq!(FromUrdf::JOINT_NAMES, ["joint1"]);
 //! let q = 0.3_f64;
 //! assert!((FromUrdf::gravity(&[q])[0] - 2.0 * 9.81 * 0.3 * q.sin()).abs() < 1e-12);
+//! // The file's `<limit lower="-6.28" upper="6.28" effort="100" velocity="10"/>`.
+//! let limits = FromUrdf::JOINT_LIMITS[0];
+//! assert_eq!((limits.lower, limits.upper, limits.velocity, limits.effort), (-6.28, 6.28, 10.0, 100.0));
+//! assert_eq!(FromUrdf::JOINT_FRICTION, [0.0]);
 //! ```
 //!
 //! ## `force_analysis`
@@ -290,8 +327,13 @@
 //! A shape is a uniform solid centred at the mass centre; a shape's axis is a body axis,
 //! `x`, `y` or `z` (use `inertia: principal(..)` for another orientation). A body gives
 //! either `inertia` or `shape`, and the fields are `mass`, `com`, `inertia` (or `shape`),
-//! each at most once. Masses are not negative, inertias are symmetric, positive
-//! semi-definite and satisfy the triangle inequality; shape dimensions are not negative.
+//! each at most once. Masses are not negative, inertias are symmetric, shape dimensions
+//! are not negative (each body as declared), and the inertia of every body of the
+//! dynamics is positive semi-definite and satisfies the triangle inequality, judged on the
+//! bodies as merged through fixed joints: the bodies welded to one body (or to the ground)
+//! are one body, whose mass, mass centre and I_G combine theirs, and a body that alone
+//! would fail (a placeholder inertia) is accepted when the merged body passes. The type's
+//! docs note such a body.
 //!
 //! ```rust
 //! use dynamics_runtime::{mechanism, Mechanism};
@@ -329,7 +371,9 @@
 //!
 //! `joint name: kind(parent -> child) { field: value, .. }` (or `;` instead of the braces
 //! when there are no fields). The parent is a body or `ground`; every body has exactly one
-//! parent joint and the bodies form a tree rooted at the ground.
+//! parent joint and the bodies form a tree rooted at the ground. The bodies, joints and
+//! coordinates (`BODY_NAMES`, `JOINT_NAMES`, q, v) are numbered depth first from the
+//! ground, each subtree contiguous, a body's children in declaration order.
 //!
 //! | kind | coordinates |
 //! | --- | --- |
@@ -345,7 +389,15 @@
 //! | `rotation` | the joint frame's orientation in the parent frame ([rotation forms](#rotations); the identity when absent) |
 //! | `armature` | rotor inertia reflected to the coordinate, added to M's diagonal (not negative) |
 //! | `damping` | viscous friction b: the joint force b q̇ enters `bias` and `inverse_dynamics` and opposes the motion in `forward_dynamics` (not negative) |
+//! | `friction` | Coulomb friction (N·m or N; not negative): carried to `JOINT_FRICTION`, in no generated function (as Pinocchio's `model.friction`) |
+//! | `limits: { lower: .., upper: .., velocity: .., effort: .. }` | the coordinate's limits (each optional, unbounded when absent; lower ≤ upper, velocity and effort not negative): carried to `JOINT_LIMITS`, enforced by no generated function |
 //! | `driven: true` | an actuator drives the coordinate: the force analysis solves for its effort |
+//!
+//! `friction` and `limits` are constants, and only on revolute and prismatic joints. The
+//! type's `Mechanism::JOINT_LIMITS` (a [`JointLimits`](crate::JointLimits) per velocity
+//! coordinate, in the order of v: ±∞, that is [`f64::INFINITY`], where none is given; a free
+//! joint's six unbounded) and `Mechanism::JOINT_FRICTION` (one per velocity coordinate, 0
+//! where none is given) list them, and its docs have a `# Limits and friction` table.
 //!
 //! At q = 0 the child's frame is the joint frame.
 //!
@@ -375,6 +427,29 @@
 //! assert_eq!((Drone::NQ, Drone::NV), (7, 6));
 //! ```
 //!
+//! ```rust
+//! use dynamics_runtime::{mechanism, JointLimits, Mechanism};
+//!
+//! mechanism! {
+//!     pub struct Limited;
+//!     outputs: [gravity];
+//!     body link { mass: 1.0, com: [0.5, 0.0, 0.0], shape: point }
+//!     body slide { mass: 1.0, shape: point }
+//!     joint shoulder: revolute(ground -> link) {
+//!         axis: y,
+//!         friction: 0.2,
+//!         limits: { lower: -pi / 2, upper: pi / 2, velocity: 3.0, effort: 40.0 },
+//!     }
+//!     joint rail: prismatic(link -> slide) { axis: x, limits: { upper: 0.3 } }
+//! }
+//!
+//! let [shoulder, rail] = [Limited::JOINT_LIMITS[0], Limited::JOINT_LIMITS[1]];
+//! assert_eq!((shoulder.upper, shoulder.effort), (std::f64::consts::FRAC_PI_2, 40.0));
+//! assert_eq!(rail, JointLimits { upper: 0.3, ..JointLimits::UNBOUNDED });
+//! assert!(rail.contains_position(-5.0) && !rail.contains_position(0.4));
+//! assert_eq!(Limited::JOINT_FRICTION, [0.2, 0.0]);
+//! ```
+//!
 //! ## Rotations
 //!
 //! | form | rotation |
@@ -392,10 +467,14 @@
 //! `load name: wrench on body at [x, y, z];` declares a run-time input. A force has 3
 //! inputs, a couple 3, a wrench 6 (the force, then the couple). The loads' inputs are
 //! consecutive entries of the `loads` argument, in the order of declaration, each given
-//! **in the frame of the body it is declared on**; a force acts through the point `at` (in
-//! that frame; the body's origin when absent), a couple is free.
-//! `inverse_dynamics`, `forward_dynamics`, `joint_reactions` and `force_analysis` take
-//! `loads`; the generated type's rustdoc lists each load's entries.
+//! **in the axes of the body it is declared on**; a force acts through the point `at` (in
+//! that body's frame; the body's origin when absent), a couple is free.
+//! `inverse_dynamics`, `forward_dynamics` (and its `_aba`, `_ldlt` and `_derivatives`
+//! forms), `inverse_dynamics_derivatives`, `joint_reactions` and `force_analysis` take
+//! `loads`; the generated type's rustdoc lists each load's entries and axes, and
+//! `Mechanism::model()` holds the loads as declared ([`LoadSpec`](crate::LoadSpec), with
+//! [`Reference::generalized_load_forces`](crate::Reference::generalized_load_forces) for
+//! their generalized force).
 //!
 //! ```rust
 //! use dynamics_runtime::{mechanism, Mechanism};
@@ -416,6 +495,38 @@
 //! let loads = [0.0, 2.0, 0.0, 0.0, 0.0, 0.5];
 //! let tau = Pushed::inverse_dynamics(&[0.7_f64], &[0.0], &[0.0], &loads);
 //! assert!((tau[0] + 2.5).abs() < 1e-12);
+//! ```
+//!
+//! A trailing `in world` gives the components in the world's fixed axes instead (a cable
+//! pulling in a fixed direction, a contact force measured in the world); the point stays
+//! fixed on the body, given in its frame. The generated code turns the components into the
+//! body's axes, F_in_body = R_bodyᵀ F_in_world, with the body's orientation at `q`. `in body`
+//! says the default explicitly. The two may come in either order after the body; `in` takes
+//! `world` or `body` and is given once.
+//!
+//! ```rust
+//! use dynamics_runtime::{mechanism, LoadFrame, Mechanism};
+//!
+//! mechanism! {
+//!     pub struct Pulled;
+//!     gravity: none;
+//!     outputs: [inverse_dynamics];
+//!     body bar { mass: 1.0, com: [0.5, 0.0, 0.0], shape: rod(length: 1.0, axis: x) }
+//!     joint pivot: revolute(ground -> bar) { axis: z }
+//!     /// A cable at the tip, pulling along the world's y whatever the bar's angle.
+//!     load cable: force on bar at [1.0, 0.0, 0.0] in world;
+//!     /// The same force in the bar's axes.
+//!     load push: force on bar at [1.0, 0.0, 0.0] in body;
+//! }
+//!
+//! assert_eq!(Pulled::model().loads()[0].frame, LoadFrame::World);
+//! // At angle q the tip is at (cos q, sin q, 0): 2 N along the world's y has the moment
+//! // 2 cos q about the pivot, along the bar's y the moment 2.
+//! let q = 0.7_f64;
+//! let in_world = Pulled::inverse_dynamics(&[q], &[0.0], &[0.0], &[0.0, 2.0, 0.0, 0.0, 0.0, 0.0]);
+//! assert!((in_world[0] + 2.0 * q.cos()).abs() < 1e-12);
+//! let in_body = Pulled::inverse_dynamics(&[q], &[0.0], &[0.0], &[0.0, 0.0, 0.0, 0.0, 2.0, 0.0]);
+//! assert!((in_body[0] + 2.0).abs() < 1e-12);
 //! ```
 //!
 //! # Frames

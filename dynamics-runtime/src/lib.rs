@@ -59,11 +59,11 @@ pub use dynamics::{
 };
 pub use dynamics_macros::mechanism;
 pub use lanes::{F32x8, F64x4, Lanes};
-pub use mechanism::{FunctionCost, Mechanism};
+pub use mechanism::{FunctionCost, JointLimits, Mechanism};
 #[cfg(feature = "std")]
 pub use model::{
-    BodySpec, FrameSpec, Inertia, JointKind, JointSpec, JointType, Model, ModelBuilder, ModelError,
-    ModelErrors, Placement, SizeError, GROUND,
+    BodySpec, FrameSpec, Inertia, JointKind, JointSpec, JointType, Load, LoadFrame, LoadSpec,
+    LoadType, Model, ModelBuilder, ModelError, ModelErrors, Placement, SizeError, GROUND,
 };
 /// The nalgebra version the runtime and the generated `*_na` wrappers use.
 #[cfg(feature = "std")]

@@ -29,6 +29,38 @@ pub struct FunctionCost {
     pub trig: usize,
 }
 
+/// The limits of one velocity coordinate, as declared (`limits: { .. }`) or read from a
+/// URDF `<limit>`: ±∞ ([`f64::INFINITY`]) where none is given, as for a URDF `continuous`
+/// joint's position or a free joint's six coordinates. No generated function enforces
+/// them; they are there for controllers, planners and simulators.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointLimits {
+    /// Lowest position (rad or m); −∞ when unbounded.
+    pub lower: f64,
+    /// Highest position (rad or m); +∞ when unbounded.
+    pub upper: f64,
+    /// Largest |velocity| (rad/s or m/s); +∞ when unbounded.
+    pub velocity: f64,
+    /// Largest |effort| (N·m or N); +∞ when unbounded.
+    pub effort: f64,
+}
+
+impl JointLimits {
+    /// No limit at all.
+    pub const UNBOUNDED: JointLimits = JointLimits {
+        lower: f64::NEG_INFINITY,
+        upper: f64::INFINITY,
+        velocity: f64::INFINITY,
+        effort: f64::INFINITY,
+    };
+
+    /// Whether `position` lies within [lower, upper].
+    #[must_use]
+    pub fn contains_position(&self, position: f64) -> bool {
+        (self.lower..=self.upper).contains(&position)
+    }
+}
+
 /// A mechanism declared with `mechanism!`.
 pub trait Mechanism {
     /// The type's name.
@@ -55,6 +87,15 @@ pub trait Mechanism {
     /// fixed joint (URDF end effectors, flanges, feet), then every declared `frame`, or those
     /// `frames: [..]` lists. `Robot::FRAME_<NAME>` is each one's index.
     const FRAME_NAMES: &'static [&'static str] = &[];
+    /// The limits of each velocity coordinate, in the order of v (`NV` entries): a revolute
+    /// or prismatic joint's from its `limits: { .. }` or URDF `<limit>`, ±∞ where none is
+    /// given; a free joint's six unbounded.
+    const JOINT_LIMITS: &'static [JointLimits];
+    /// The Coulomb (dry) friction of each velocity coordinate, in the order of v (`NV`
+    /// entries; 0 where none is given): a joint's `friction:` or URDF `<dynamics
+    /// friction>`. No generated function includes it (as in Pinocchio, which also only
+    /// carries it); viscous damping, which the dynamics do include, is in [`Self::model`].
+    const JOINT_FRICTION: &'static [f64];
 
     /// The generated functions and their operation counts.
     const FUNCTIONS: &'static [FunctionCost];

@@ -27,7 +27,8 @@
 //! component (I_33 − I_22) ω_2 ω_3 + I_23 (ω_2² − ω_3²) + I_13 ω_1 ω_2 − I_12 ω_1 ω_3)
 //! gathered by inertia entry ([`euler_moment`]: e.g. I_12 (α_2 − ω_1 ω_3), a sum U
 //! already holds), whose constant differences fold at compile time. The applied loads on
-//! the body are subtracted. Backward sweep: the wrench the joint transmits,
+//! the body are subtracted (those given `in world` first turned into the body's axes down
+//! the tree, as gravity is). Backward sweep: the wrench the joint transmits,
 //! f_i = (F, M_P)_i + Σ_children (E_c F_c, E_c M_c + r_c × E_c F_c), and τ_i = s_iᵀ f_i (the
 //! moment for a revolute joint, the force for a prismatic one, the whole wrench for a free
 //! joint), plus armature · q̈ and damping · q̇.
@@ -36,7 +37,7 @@
 //! base inertial parameters for τ alone ([`crate::passes::base_parameters`]).
 
 use super::geometry::{self, BodyInertia, JointTransform};
-use crate::model::{JointKind, LoadKind, Model};
+use crate::model::{JointKind, LoadFrame, LoadKind, Model};
 use crate::sym::{Array, Graph, Mat3, Node, Vec3};
 
 /// The motion of a body: ω, α and the classical acceleration a_P of its origin, in its frame.
@@ -157,7 +158,7 @@ pub(crate) fn sweep(
     inputs: &SweepInputs,
 ) -> Sweep {
     let motions = motions(g, model, transforms, inputs);
-    let loads = load_wrenches(g, model, inputs.loads);
+    let loads = load_wrenches(g, model, transforms, inputs.loads);
     let mut sweep = Sweep {
         motions,
         loads,
@@ -442,9 +443,17 @@ fn centre_grouping_is_cheaper(g: &Graph, h: Vec3, i_p: Mat3, c: Vec3, i_g: Mat3)
 }
 
 /// The applied loads as a wrench on each body, [F; M_P] in the body frame: a force f
-/// through point r_l and a couple n (given in the loaded body's declared frame) give
-/// F = f, M_P = r_l × f + n. Bodies without loads get zero.
-pub fn load_wrenches(g: &Graph, model: &Model, with_loads: bool) -> Vec<(Vec3, Vec3)> {
+/// through point r_l and a couple n give F = f, M_P = r_l × f + n, with f and n in the body
+/// frame: the inputs turned from the loaded body's declared frame by a constant rotation
+/// (the body's place in the composite body it was merged into), or, for a load given
+/// `in world`, from the world's axes down the tree, f_in_body = E_iᵀ ⋯ E_1ᵀ f_in_world
+/// ([`world_to_body`]). Bodies without loads get zero.
+pub fn load_wrenches(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    with_loads: bool,
+) -> Vec<(Vec3, Vec3)> {
     let mut wrenches = vec![(Vec3::zero(g), Vec3::zero(g)); model.bodies.len()];
     if !with_loads {
         return wrenches;
@@ -456,7 +465,10 @@ pub fn load_wrenches(g: &Graph, model: &Model, with_loads: bool) -> Vec<(Vec3, V
                 g.input(Array::Loads, load.input_offset + k + 1),
                 g.input(Array::Loads, load.input_offset + k + 2),
             );
-            Mat3::constant(g, load.rotation_in_body).mul_vec(g, raw)
+            match load.frame {
+                LoadFrame::Body => Mat3::constant(g, load.rotation_in_body).mul_vec(g, raw),
+                LoadFrame::World => world_to_body(g, model, transforms, load.body, raw),
+            }
         };
         let (force, couple) = match load.kind {
             LoadKind::Force => (input(0), Vec3::zero(g)),
@@ -470,6 +482,25 @@ pub fn load_wrenches(g: &Graph, model: &Model, with_loads: bool) -> Vec<(Vec3, V
         *m = m.add(g, moment);
     }
     wrenches
+}
+
+/// A vector given in world axes, in the axes of body `body`: turned into each body's frame
+/// on the path from the root down, w_i = E_iᵀ w_λ (as gravity enters the forward sweep),
+/// which is R_bodyᵀ w_in_world with R_body = E_1 ⋯ E_i.
+fn world_to_body(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    body: usize,
+    in_world: Vec3,
+) -> Vec3 {
+    let mut path = vec![body];
+    while let Some(parent) = path.last().and_then(|&b| model.bodies[b].parent) {
+        path.push(parent);
+    }
+    path.iter()
+        .rev()
+        .fold(in_world, |w, &b| geometry::to_body(g, &transforms[b], w))
 }
 
 #[cfg(test)]

@@ -76,7 +76,7 @@ pub fn balance_equations(
 ) -> (Vec<Vec<Node>>, Vec<Node>) {
     // The wrench each body needs for its motion (the right-hand side).
     let motions = rnea::motions(g, model, transforms, inputs);
-    let loads = rnea::load_wrenches(g, model, inputs.loads);
+    let loads = rnea::load_wrenches(g, model, transforms, inputs.loads);
     let rows = statics.rows_per_body();
     let component = |(f, m): &(Vec3, Vec3), (kind, axis): (Component, usize)| match kind {
         Component::Force => f.get(axis),

@@ -302,6 +302,37 @@ impl JointKind {
     }
 }
 
+/// A coordinate's limits, as declared or read from a URDF `<limit>`: ±∞ where none is
+/// given. They constrain nothing in the generated functions; they are printed as
+/// `JOINT_LIMITS`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointLimits {
+    /// Lowest position.
+    pub lower: f64,
+    /// Highest position.
+    pub upper: f64,
+    /// Largest |velocity|.
+    pub velocity: f64,
+    /// Largest |effort|.
+    pub effort: f64,
+}
+
+impl JointLimits {
+    /// No limit at all.
+    pub const UNBOUNDED: JointLimits = JointLimits {
+        lower: f64::NEG_INFINITY,
+        upper: f64::INFINITY,
+        velocity: f64::INFINITY,
+        effort: f64::INFINITY,
+    };
+
+    /// Whether any limit is finite.
+    #[must_use]
+    pub fn is_bounded(&self) -> bool {
+        *self != Self::UNBOUNDED
+    }
+}
+
 /// The joint that moves a body of the tree.
 #[derive(Clone, Debug)]
 pub struct Joint {
@@ -319,6 +350,10 @@ pub struct Joint {
     pub armature: Value,
     /// Viscous friction coefficient of each coordinate.
     pub damping: Value,
+    /// Coulomb friction of each coordinate (in no generated function).
+    pub friction: f64,
+    /// The limits of each coordinate (a free joint's are unbounded).
+    pub limits: JointLimits,
     /// First coordinate in q.
     pub idx_q: usize,
     /// First coordinate in v.
@@ -331,6 +366,11 @@ pub struct Joint {
 pub struct Part {
     /// The declared body's name.
     pub name: String,
+    /// Its doc comments.
+    pub docs: Vec<String>,
+    /// The fixed joint that welds it (its name and doc comments); `None` for a tree body's
+    /// own part, which its moving joint moves.
+    pub weld: Option<(String, Vec<String>)>,
     /// Mass m.
     pub mass: Value,
     /// Mass centre in the tree body's frame.
@@ -355,6 +395,40 @@ pub struct Body {
     pub parts: Vec<Part>,
 }
 
+/// The axes an applied load's components are given in.
+pub use syntax::LoadFrame;
+
+impl Body {
+    /// Its doc comments, then, when a part welded into it has an inertia the rules would
+    /// reject alone (a URDF link's placeholder), a note that the rules judged the merged
+    /// body.
+    #[must_use]
+    pub fn documented(&self, p: &[f64], skip_triangle_inequality: bool) -> Vec<String> {
+        let mut docs = self.docs.clone();
+        if self.parts.len() < 2 {
+            return docs;
+        }
+        let others: Vec<String> = self.parts[1..]
+            .iter()
+            .map(|part| format!("`{}`", part.name))
+            .collect();
+        for part in &self.parts {
+            let inertia = value::nominal33(&part.inertia_com_in_body, p);
+            if let Some(defect) = rules::inertia_defect(&inertia, !skip_triangle_inequality) {
+                docs.push(format!(
+                    " Note: the inertia of `{}` alone {}, as a placeholder inertia in a URDF \
+                     file may; the inertia rules judge the body merged with {} (welded to it \
+                     through fixed joints), which is physical.",
+                    part.name,
+                    defect.describe(),
+                    others.join(", ")
+                ));
+            }
+        }
+        docs
+    }
+}
+
 /// Kind of an applied load.
 pub use syntax::LoadKind;
 
@@ -365,7 +439,8 @@ pub struct Load {
     pub name: String,
     /// Its doc comments.
     pub docs: Vec<String>,
-    /// The body it was declared on (its inputs are in that body's frame).
+    /// The body it was declared on (its inputs are in that body's axes unless `frame` is
+    /// the world).
     pub declared_body: String,
     /// The point of application as declared, in the declared body's frame.
     pub declared_point: Vec3,
@@ -373,8 +448,10 @@ pub struct Load {
     pub kind: LoadKind,
     /// The body of the tree it acts on.
     pub body: usize,
-    /// Rotation from the declared body's frame (in which the inputs are given) to the tree
-    /// body's frame.
+    /// The axes its inputs are given in: the declared body's, or the world's.
+    pub frame: LoadFrame,
+    /// Rotation from the declared body's frame (in which body-frame inputs are given) to
+    /// the tree body's frame.
     pub rotation_in_body: [[f64; 3]; 3],
     /// Point of application in the tree body's frame.
     pub point_in_body: Vec3,
@@ -476,6 +553,9 @@ pub struct Model {
     pub bodies: Vec<Body>,
     /// Applied loads, in declaration order.
     pub loads: Vec<Load>,
+    /// The declared bodies welded to the ground through fixed joints (each in the world
+    /// frame), in depth-first order: they enter no dynamics.
+    pub ground_parts: Vec<Part>,
     /// The operational frames the frame outputs cover: every body welded through a fixed
     /// joint (in the tree's depth-first order) then every declared `frame`, or those
     /// `frames: [..]` lists, in its order.

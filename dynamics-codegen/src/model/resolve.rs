@@ -5,7 +5,7 @@
 //! constant makes sense, missing fields) and carries every span on, for the rules.
 
 use super::linear;
-use super::resolved::{Resolved, ResolvedBody, ResolvedFrame, ResolvedJoint};
+use super::resolved::{Resolved, ResolvedBody, ResolvedFrame, ResolvedJoint, ResolvedLimits};
 use super::value::{rotate_matrix, Mat3, Value, Vec3};
 use super::{rules, Diagnostics, Outputs, Parameter};
 use crate::syntax::{self, Axis, InertiaForm, Number, NumberValue, Rotation, ShapeKind, SpanRange};
@@ -383,6 +383,7 @@ fn resolve_body(r: &mut Resolver, body: &syntax::Body) -> ResolvedBody {
         com,
         inertia,
         inertia_span,
+        inertia_from_mass: matches!(body.inertia, Some(InertiaForm::Shape(_))),
     }
 }
 
@@ -421,6 +422,28 @@ fn resolve_joint(r: &mut Resolver, joint: &syntax::Joint) -> ResolvedJoint {
     };
     let armature = coefficient(&joint.armature);
     let damping = coefficient(&joint.damping);
+    let name_span = SpanRange::from(joint.name.span);
+    let mut constant = |n: Option<&Number>, what: &str, absent: f64| match n {
+        Some(n) => (r.constant(n, what), n.span),
+        None => (absent, name_span),
+    };
+    let friction = constant(joint.friction.as_ref(), "a joint's friction", 0.0);
+    let limits = match &joint.limits {
+        Some(l) => ResolvedLimits {
+            lower: constant(l.lower.as_ref(), "joint limits", f64::NEG_INFINITY),
+            upper: constant(l.upper.as_ref(), "joint limits", f64::INFINITY),
+            velocity: constant(l.velocity.as_ref(), "joint limits", f64::INFINITY),
+            effort: constant(l.effort.as_ref(), "joint limits", f64::INFINITY),
+            span: Some(l.span),
+        },
+        None => ResolvedLimits {
+            lower: (f64::NEG_INFINITY, name_span),
+            upper: (f64::INFINITY, name_span),
+            velocity: (f64::INFINITY, name_span),
+            effort: (f64::INFINITY, name_span),
+            span: None,
+        },
+    };
     ResolvedJoint {
         docs: joint.docs.clone(),
         name: joint.name.clone(),
@@ -433,6 +456,8 @@ fn resolve_joint(r: &mut Resolver, joint: &syntax::Joint) -> ResolvedJoint {
         rotation_span,
         armature,
         damping,
+        friction,
+        limits,
     }
 }
 

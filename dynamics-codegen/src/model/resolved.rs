@@ -15,6 +15,9 @@ pub(crate) struct ResolvedBody {
     pub com: Vec3,
     pub inertia: Mat3,
     pub inertia_span: SpanRange,
+    /// Whether I_G was computed from the mass (a `shape`), so that it shares the mass's
+    /// sign.
+    pub inertia_from_mass: bool,
 }
 
 /// A joint with resolved numbers.
@@ -31,6 +34,20 @@ pub(crate) struct ResolvedJoint {
     pub rotation_span: SpanRange,
     pub armature: (Value, SpanRange),
     pub damping: (Value, SpanRange),
+    /// Coulomb friction (0 when absent), at its number (the joint's name when absent).
+    pub friction: (f64, SpanRange),
+    /// The limits, unbounded where absent.
+    pub limits: ResolvedLimits,
+}
+
+/// A joint's limits: each a constant with its span (±∞ at the joint's name when absent).
+pub(crate) struct ResolvedLimits {
+    pub lower: (f64, SpanRange),
+    pub upper: (f64, SpanRange),
+    pub velocity: (f64, SpanRange),
+    pub effort: (f64, SpanRange),
+    /// The `limits: { .. }` block, when given.
+    pub span: Option<SpanRange>,
 }
 
 /// An operational frame with resolved numbers.

@@ -38,20 +38,36 @@ pub(crate) fn check_all(mechanism: &syntax::Mechanism, resolved: &Resolved, d: &
     type_name_is_usable(&mechanism.name, d);
     names_are_unique(mechanism, d);
     constraint_names_are_unique(mechanism, d);
-    for body in &resolved.bodies {
-        let inertia = nominal33(&body.inertia, &p);
-        mass_is_not_negative(body, &p, d);
-        if inertia_is_symmetric(body, &inertia, d) {
-            inertia_is_positive(body, &inertia, d);
-            if !resolved.skip_triangle_inequality {
-                inertia_satisfies_triangle(body, &inertia, d);
-            }
+    // Mass and symmetry are each declared body's; positivity and the triangle inequality
+    // are judged on the bodies as merged through fixed joints: a body alone when its
+    // inertia is symmetric, bodies merged when each is symmetric and none has a negative
+    // mass (each reported on its own). No error that only follows from another on the same
+    // body: a shape's I_G scales with the mass, so a negative mass makes it negative too
+    // (the mass is the one mistake); an I_G given on its own is judged even when the mass
+    // is wrong: its mistakes are the user's too.
+    let (symmetric, mass): (Vec<bool>, Vec<bool>) = resolved
+        .bodies
+        .iter()
+        .map(|body| {
+            let inertia = nominal33(&body.inertia, &p);
+            let mass = mass_is_not_negative(body, &p, d);
+            (inertia_is_symmetric(body, &inertia, d), mass)
+        })
+        .unzip();
+    for group in welded_groups(mechanism, resolved, &p) {
+        let alone = group.members.len() == 1;
+        if group.members.iter().all(|m| {
+            let shape = resolved.bodies[m.body].inertia_from_mass;
+            symmetric[m.body] && (mass[m.body] || (alone && !shape))
+        }) {
+            merged_inertia_is_physical(&group, resolved, &p, d);
         }
     }
     for joint in &resolved.joints {
         axis_is_nonzero(joint, d);
         rotation_is_proper(joint, d);
         joint_coefficients_are_not_negative(joint, &p, d);
+        limits_and_friction_fit_the_joint(joint, d);
     }
     joints_name_declared_bodies(mechanism, d);
     body_has_one_parent(mechanism, d);
@@ -111,8 +127,9 @@ pub(crate) fn report_undeclared_parameter(name: &str, span: SpanRange, d: &mut D
 }
 
 /// Rule: axes, rotations, gravity and shape dimensions are constants (they select the
-/// structure of the generated code); parameters may appear in masses, mass centres,
-/// inertias, joint offsets, armature and damping.
+/// structure of the generated code), and so are joint limits and friction (they are
+/// printed as constants); parameters may appear in masses, mass centres, inertias, joint
+/// offsets, armature and damping.
 pub(crate) fn report_parameter_not_allowed(
     name: &str,
     what: &str,
@@ -121,7 +138,7 @@ pub(crate) fn report_parameter_not_allowed(
 ) {
     d.error(
         span,
-        format!("parameter `{name}` cannot be used in {what}: axes, rotations, gravity and shape dimensions must be constants"),
+        format!("parameter `{name}` cannot be used in {what}: axes, rotations, gravity, shape dimensions, joint limits and friction must be constants"),
     );
 }
 
@@ -324,9 +341,10 @@ fn constraint_names_are_unique(mechanism: &syntax::Mechanism, d: &mut Diagnostic
     }
 }
 
-/// Rule: a body's mass is not negative.
-fn mass_is_not_negative(body: &ResolvedBody, p: &[f64], d: &mut Diagnostics) {
-    if body.mass.nominal(p) < 0.0 {
+/// Rule: a body's mass is not negative. Returns whether it is not.
+fn mass_is_not_negative(body: &ResolvedBody, p: &[f64], d: &mut Diagnostics) -> bool {
+    let negative = body.mass.nominal(p) < 0.0;
+    if negative {
         d.error(
             body.mass_span,
             format!(
@@ -336,6 +354,7 @@ fn mass_is_not_negative(body: &ResolvedBody, p: &[f64], d: &mut Diagnostics) {
             ),
         );
     }
+    !negative
 }
 
 /// Rule: I_G is symmetric (I_xy = I_yx, ...). Returns whether it is.
@@ -364,47 +383,261 @@ pub(crate) fn principal_moments(inertia: &Matrix3) -> [f64; 3] {
     linear::symmetric_eigenvalues(inertia)
 }
 
+/// What is unphysical about an inertia I_G, if anything: a negative principal moment
+/// (beyond the relative tolerance), or, where it is positive, moments that violate the
+/// triangle inequality (when `triangle` asks for that rule).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum InertiaDefect {
+    /// Not positive semi-definite; the principal moments, ascending.
+    NotPositive([f64; 3]),
+    /// I1 + I2 < I3; the principal moments, ascending.
+    Triangle([f64; 3]),
+}
+
+impl InertiaDefect {
+    /// What is wrong, for a message: `is not positive semi-definite` or `violates the
+    /// triangle inequality I1 + I2 ≥ I3`, with the principal moments.
+    pub(crate) fn describe(&self) -> String {
+        let (what, p) = match self {
+            InertiaDefect::NotPositive(p) => ("is not positive semi-definite", p),
+            InertiaDefect::Triangle(p) => ("violates the triangle inequality I1 + I2 ≥ I3", p),
+        };
+        format!(
+            "{what} (principal moments {}, {}, {} kg·m²)",
+            computed(p[0]),
+            computed(p[1]),
+            computed(p[2])
+        )
+    }
+}
+
 /// Rule: I_G is positive semi-definite: every principal moment ≥ 0 (a thin rod has a zero
-/// moment about its axis, a point mass all zero).
-fn inertia_is_positive(body: &ResolvedBody, inertia: &Matrix3, d: &mut Diagnostics) {
+/// moment about its axis, a point mass all zero); and the principal moments satisfy
+/// I1 + I2 ≥ I3, as every real mass distribution does (I1 + I2 − I3 = 2∫z² dm in principal
+/// axes), unless `triangle` is false (`allow: [triangle_inequality]`). The triangle is
+/// checked wherever the positivity rule passes (a tiny negative moment within its tolerance
+/// included), so that the runtime, which skips it near that edge, never judges alone.
+pub(crate) fn inertia_defect(inertia: &Matrix3, triangle: bool) -> Option<InertiaDefect> {
     let p = principal_moments(inertia);
     if p[0] < -INERTIA_TOLERANCE * p[2].abs().max(f64::MIN_POSITIVE) {
-        d.error(
-            body.inertia_span,
+        return Some(InertiaDefect::NotPositive(p));
+    }
+    if triangle && p[0] + p[1] < p[2] - INERTIA_TOLERANCE * (p[0] + p[1] + p[2]) {
+        return Some(InertiaDefect::Triangle(p));
+    }
+    None
+}
+
+/// Declared bodies welded together through fixed joints: one body of the dynamics, which
+/// the inertia rules judge as a whole.
+pub(crate) struct WeldedGroup {
+    /// The body the others are welded to (the one a moving joint moves), or `None` for the
+    /// bodies welded to the ground.
+    pub root: Option<usize>,
+    /// The declared bodies: the root first, then in declaration order.
+    pub members: Vec<Member>,
+}
+
+/// A declared body of a [`WeldedGroup`], placed in the group's frame (the root's, or the
+/// world's): x_group = rotation x_body + translation, at the nominal parameters.
+pub(crate) struct Member {
+    /// Index among the declared bodies.
+    pub body: usize,
+    /// Rotation of its frame in the group's frame.
+    pub rotation: Matrix3,
+    /// Its origin in the group's frame.
+    pub translation: [f64; 3],
+}
+
+/// The declared bodies grouped by what they are welded to, each group in the order of its
+/// first member's declaration, its root first. Each body walks up through the fixed joints that make it its
+/// parent's (the first joint naming it as child), composing their placements, to a body
+/// moved by another kind of joint, or to the ground. A walk that meets an undeclared parent,
+/// or loops (rules of their own report both), stops: the body is the root of its group.
+pub(crate) fn welded_groups(
+    mechanism: &syntax::Mechanism,
+    resolved: &Resolved,
+    p: &[f64],
+) -> Vec<WeldedGroup> {
+    let index: HashMap<&str, usize> = resolved
+        .bodies
+        .iter()
+        .enumerate()
+        .map(|(i, b)| (b.name.text.as_str(), i))
+        .collect();
+    let mut parent_joint: HashMap<&str, &ResolvedJoint> = HashMap::new();
+    for (joint, declared) in resolved.joints.iter().zip(&mechanism.joints) {
+        if !is_self_joint(declared) {
+            parent_joint
+                .entry(joint.child.text.as_str())
+                .or_insert(joint);
+        }
+    }
+    let mut groups: Vec<WeldedGroup> = Vec::new();
+    for (b, body) in resolved.bodies.iter().enumerate() {
+        let (mut at, mut rotation, mut translation) = (b, linear::IDENTITY, [0.0; 3]);
+        let mut root = Some(b);
+        for _ in 0..=resolved.bodies.len() {
+            let name = resolved.bodies[at].name.text.as_str();
+            let Some(joint) = parent_joint
+                .get(name)
+                .filter(|j| j.kind == JointKind::Fixed)
+            else {
+                root = Some(at);
+                break;
+            };
+            // The body's pose in the joint's parent: the placement composed on the left.
+            let r = joint.rotation;
+            rotation = linear::mul(&r, &rotation);
+            translation = linear::add_vectors(
+                &linear::mul_vector(&r, &translation),
+                &super::value::nominal3(&joint.translation, p),
+            );
+            if joint.parent.text == GROUND {
+                root = None;
+                break;
+            }
+            match index.get(joint.parent.text.as_str()) {
+                Some(&parent) => at = parent,
+                None => {
+                    root = Some(at);
+                    break;
+                }
+            }
+        }
+        if root == Some(b) || body.name.text == GROUND {
+            // Its own root (or a walk stopped by a cycle, reported elsewhere).
+            (rotation, translation) = (linear::IDENTITY, [0.0; 3]);
+            root = Some(b);
+        }
+        let member = Member {
+            body: b,
+            rotation,
+            translation,
+        };
+        match groups.iter_mut().find(|g| g.root == root) {
+            Some(group) => group.members.push(member),
+            None => groups.push(WeldedGroup {
+                root,
+                members: vec![member],
+            }),
+        }
+    }
+    // The root first, then the bodies welded to it in declaration order.
+    for group in &mut groups {
+        if let Some(k) = group
+            .members
+            .iter()
+            .position(|m| Some(m.body) == group.root)
+        {
+            let root = group.members.remove(k);
+            group.members.insert(0, root);
+        }
+    }
+    groups
+}
+
+/// The mass, mass centre and I_G of parts (mass, mass centre, I_G, each in one common
+/// frame) taken as one body: I_G = Σ I_G,k + m_k (|d_k|² 1 − d_k d_kᵀ), d_k = c_k − c.
+pub(crate) fn merged_inertia(parts: &[(f64, [f64; 3], Matrix3)]) -> Matrix3 {
+    let mass: f64 = parts.iter().map(|(m, _, _)| m).sum();
+    let com = if mass > 0.0 {
+        let weighted = parts.iter().fold([0.0; 3], |sum, (m, c, _)| {
+            linear::add_vectors(&sum, &linear::scale_vector(c, *m))
+        });
+        linear::scale_vector(&weighted, 1.0 / mass)
+    } else {
+        [0.0; 3]
+    };
+    parts.iter().fold(linear::ZERO, |sum, (m, c, i)| {
+        let d = linear::sub_vectors(c, &com);
+        let shift = linear::sub(
+            &linear::scale(&linear::IDENTITY, linear::norm_squared(&d)),
+            &linear::outer(&d, &d),
+        );
+        linear::add(&sum, &linear::add(i, &linear::scale(&shift, *m)))
+    })
+}
+
+/// Rule: the inertia of each body of the dynamics, the declared bodies welded together
+/// through fixed joints merged into one, is physical ([`inertia_defect`]): a URDF link's
+/// placeholder inertia welded to a real body is no error, a merged body that is not
+/// physical is. A body welded to nothing is judged alone, as declared (its matrix as
+/// written, not rotated). Reported at the root's inertia (the first member's, for the
+/// bodies welded to the ground).
+fn merged_inertia_is_physical(
+    group: &WeldedGroup,
+    resolved: &Resolved,
+    p: &[f64],
+    d: &mut Diagnostics,
+) {
+    let triangle = !resolved.skip_triangle_inequality;
+    let body = |k: usize| &resolved.bodies[group.members[k].body];
+    let (inertia, what) = if let [only] = group.members.as_slice() {
+        let declared = &resolved.bodies[only.body];
+        (
+            nominal33(&declared.inertia, p),
+            format!("body `{}`", declared.name.text),
+        )
+    } else {
+        let parts: Vec<(f64, [f64; 3], Matrix3)> = group
+            .members
+            .iter()
+            .map(|m| {
+                let declared = &resolved.bodies[m.body];
+                let com = super::value::nominal3(&declared.com, p);
+                (
+                    declared.mass.nominal(p),
+                    linear::add_vectors(&linear::mul_vector(&m.rotation, &com), &m.translation),
+                    linear::rotate(&m.rotation, &nominal33(&declared.inertia, p)),
+                )
+            })
+            .collect();
+        let names = |skip: usize| -> String {
+            (skip..group.members.len())
+                .map(|k| format!("`{}`", body(k).name.text))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let what = match group.root {
+            Some(_) => format!(
+                "body `{}` merged with {} (welded to it through fixed joints)",
+                body(0).name.text,
+                names(1)
+            ),
+            None => format!("the bodies welded to the ground, {}, merged", names(0)),
+        };
+        (merged_inertia(&parts), what)
+    };
+    let span = match group.root {
+        Some(root) => resolved.bodies[root].inertia_span,
+        None => body(0).inertia_span,
+    };
+    match inertia_defect(&inertia, triangle) {
+        Some(InertiaDefect::NotPositive(p)) => d.error(
+            span,
             format!(
-                "the inertia of body `{}` is not positive semi-definite: its principal moments are \
-                 {}, {}, {} kg·m²; check the signs of the products of inertia",
-                body.name.text,
+                "the inertia of {what} is not positive semi-definite: its principal moments \
+                 are {}, {}, {} kg·m²; check the signs of the products of inertia",
                 computed(p[0]),
                 computed(p[1]),
                 computed(p[2])
             ),
-        );
-    }
-}
-
-/// Rule: the principal moments satisfy I1 + I2 ≥ I3, as every real mass distribution does
-/// (I1 + I2 − I3 = 2∫z² dm in principal axes). Waived by `allow: [triangle_inequality]`.
-/// Checked wherever the positivity rule passes (a tiny negative moment within its tolerance
-/// included), so that the runtime, which skips it near that edge, never judges alone.
-fn inertia_satisfies_triangle(body: &ResolvedBody, inertia: &Matrix3, d: &mut Diagnostics) {
-    let p = principal_moments(inertia);
-    let positive = p[0] >= -INERTIA_TOLERANCE * p[2].abs().max(f64::MIN_POSITIVE);
-    if positive && p[0] + p[1] < p[2] - INERTIA_TOLERANCE * (p[0] + p[1] + p[2]) {
-        d.error(
-            body.inertia_span,
+        ),
+        Some(InertiaDefect::Triangle(p)) => d.error(
+            span,
             format!(
-                "the principal moments of body `{}` ({}, {}, {} kg·m²) violate the triangle inequality \
-                 I1 + I2 ≥ I3 ({} < {}): no mass distribution has this inertia \
+                "the principal moments of {what} ({}, {}, {} kg·m²) violate the triangle \
+                 inequality I1 + I2 ≥ I3 ({} < {}): no mass distribution has this inertia \
                  (`allow: [triangle_inequality];` accepts it anyway)",
-                body.name.text,
                 computed(p[0]),
                 computed(p[1]),
                 computed(p[2]),
                 computed(p[0] + p[1]),
                 computed(p[2])
             ),
-        );
+        ),
+        None => {}
     }
 }
 
@@ -471,6 +704,58 @@ fn joint_coefficients_are_not_negative(joint: &ResolvedJoint, p: &[f64], d: &mut
                     joint.name.text,
                     nominal_text(value, p)
                 ),
+            );
+        }
+    }
+}
+
+/// Rule: limits and friction belong to a revolute or prismatic joint (a fixed joint does
+/// not move, a free joint's six coordinates have no one limit), and are consistent: lower ≤
+/// upper, and the velocity and effort limits and the friction not negative.
+fn limits_and_friction_fit_the_joint(joint: &ResolvedJoint, d: &mut Diagnostics) {
+    let name = &joint.name.text;
+    if matches!(joint.kind, JointKind::Fixed | JointKind::Free) {
+        let kind = if joint.kind == JointKind::Fixed {
+            "fixed"
+        } else {
+            "free"
+        };
+        if let Some(span) = joint.limits.span {
+            d.error(
+                span,
+                format!("joint `{name}` is a {kind} joint, which has no limits; remove `limits`"),
+            );
+        }
+        if joint.friction.0 != 0.0 {
+            d.error(
+                joint.friction.1,
+                format!(
+                    "joint `{name}` is a {kind} joint, which has no friction; remove `friction`"
+                ),
+            );
+        }
+        return;
+    }
+    let l = &joint.limits;
+    if l.lower.0 > l.upper.0 {
+        d.error(
+            l.span.unwrap_or(l.upper.1),
+            format!(
+                "joint `{name}` has lower limit {} above its upper limit {}; the lower limit \
+                 must be ≤ the upper",
+                l.lower.0, l.upper.0
+            ),
+        );
+    }
+    for (what, (value, span)) in [
+        ("velocity limit", l.velocity),
+        ("effort limit", l.effort),
+        ("friction", joint.friction),
+    ] {
+        if value < 0.0 {
+            d.error(
+                span,
+                format!("joint `{name}` has {what} {value}; it must be ≥ 0"),
             );
         }
     }

@@ -73,6 +73,10 @@ fn a_setting_given_twice_is_an_error() {
             quote! { floating_base: false; },
         ),
         (
+            quote! { urdf_damping: true; },
+            quote! { urdf_damping: false; },
+        ),
+        (
             quote! { force_analysis: planar; },
             quote! { force_analysis: spatial; },
         ),
@@ -352,6 +356,20 @@ fn one_mistake_is_one_error() {
         e,
         vec!["`ground` is the fixed world frame; a body cannot be named `ground`"]
     );
+    // A negative mass with a shape (or a parameter whose nominal value makes it negative):
+    // not also "the inertia is not positive semi-definite", which the shape's I_G, scaled
+    // by the mass, only inherits.
+    let with_parameter = quote!(parameters: [m = 0.5];);
+    for (parameters, mass) in [(quote!(), quote!(-1.0)), (with_parameter, quote!(-2.0 * m))] {
+        let e = errors(quote! {
+            struct S;
+            #parameters
+            body bob { mass: #mass, com: [0.0, -0.5, 0.0], shape: box(size: [0.1, 0.2, 0.3]) }
+            joint pivot: revolute(ground -> bob) { axis: z }
+        });
+        assert_eq!(e.len(), 1, "{e:?}");
+        assert!(e[0].starts_with("body `bob` has mass -1 kg"), "{e:?}");
+    }
 }
 
 #[test]
@@ -597,4 +615,174 @@ fn reserved_type_names_are_errors_at_the_name() {
             "{e:?}"
         );
     }
+}
+
+/// `floating_base` and `urdf_damping` apply to a URDF file: without `urdf:` they are an
+/// error at the setting; their value is `true` or `false`.
+#[test]
+fn urdf_settings_need_a_urdf_file_and_a_flag() {
+    for setting in [
+        quote! { urdf_damping: false; },
+        quote! { floating_base: true; },
+    ] {
+        let name = setting.to_string();
+        let name = name.split(' ').next().unwrap_or_default().to_string();
+        let e = errors(quote! {
+            pub struct P;
+            #setting
+            body bob { mass: 1.0, com: [0.0, -0.5, 0.0], shape: point }
+            joint pivot: revolute(ground -> bob) { axis: z }
+        });
+        assert_eq!(
+            e,
+            [format!(
+                "`{name}` applies to a URDF file, and this mechanism imports none; add `urdf: \
+                 \"path/to/robot.urdf\";` or remove `{name}`"
+            )]
+        );
+    }
+    let e = errors(quote! { pub struct P; urdf: "a.urdf"; urdf_damping: maybe; });
+    assert_eq!(e, ["expected `true` or `false` after `urdf_damping:`"]);
+}
+
+/// A joint's `limits: { .. }` and `friction:` reach the model, each limit unbounded where
+/// absent; a joint without them is unbounded and frictionless.
+#[test]
+fn declared_limits_and_friction_reach_the_model() {
+    let m = lower_tokens(quote! {
+        pub struct P;
+        body a { mass: 1.0, com: [0.5, 0.0, 0.0], shape: point }
+        body b { mass: 1.0, com: [0.5, 0.0, 0.0], shape: point }
+        joint j1: revolute(ground -> a) {
+            axis: z,
+            friction: 0.5,
+            limits: { lower: -pi / 2, upper: pi / 2, effort: 40.0 },
+        }
+        joint j2: prismatic(a -> b) { axis: x }
+    })
+    .expect("valid");
+    let j1 = &m.bodies[0].joint;
+    assert_eq!(
+        j1.limits,
+        JointLimits {
+            lower: -std::f64::consts::FRAC_PI_2,
+            upper: std::f64::consts::FRAC_PI_2,
+            velocity: f64::INFINITY,
+            effort: 40.0,
+        }
+    );
+    assert_eq!(j1.friction, 0.5);
+    assert_eq!(m.bodies[1].joint.limits, JointLimits::UNBOUNDED);
+    assert_eq!(m.bodies[1].joint.friction, 0.0);
+}
+
+/// Limits are constants on a revolute or prismatic joint, ordered and not negative.
+#[test]
+fn limits_and_friction_are_checked() {
+    let e = errors(quote! {
+        pub struct P;
+        parameters: [top = 1.0];
+        body a { mass: 1.0, com: [0.5, 0.0, 0.0], shape: point }
+        body b { mass: 1.0, shape: point }
+        body c { mass: 1.0, com: [0.5, 0.0, 0.0], shape: point }
+        joint j1: revolute(ground -> a) {
+            axis: z,
+            friction: -0.1,
+            limits: { lower: 1.0, upper: 0.5, velocity: -2.0 },
+        }
+        joint j2: fixed(a -> b) { limits: { effort: 1.0 }, friction: 0.2 }
+        joint j3: revolute(a -> c) { axis: z, limits: { upper: top } }
+    });
+    assert_eq!(
+        e,
+        [
+            "parameter `top` cannot be used in joint limits: axes, rotations, gravity, shape \
+             dimensions, joint limits and friction must be constants",
+            "joint `j1` has lower limit 1 above its upper limit 0.5; the lower limit must be ≤ \
+             the upper",
+            "joint `j1` has velocity limit -2; it must be ≥ 0",
+            "joint `j1` has friction -0.1; it must be ≥ 0",
+            "joint `j2` is a fixed joint, which has no limits; remove `limits`",
+            "joint `j2` is a fixed joint, which has no friction; remove `friction`",
+        ]
+    );
+    let e = errors(quote! {
+        pub struct P;
+        body a { mass: 1.0, com: [0.5, 0.0, 0.0], shape: point }
+        joint j1: revolute(ground -> a) { axis: z, limits: { lowr: 1.0 } }
+    });
+    assert_eq!(
+        e,
+        ["unknown limit `lowr`; the limits are lower, upper, velocity, effort"]
+    );
+}
+
+/// The inertia rules judge bodies merged through fixed joints: a placeholder inertia that
+/// alone violates the triangle inequality is accepted welded to a physical body (and the
+/// body's docs say so), a merged body that is unphysical is an error at the body it is
+/// welded to, naming the merged bodies.
+#[test]
+fn inertia_rules_judge_the_merged_body() {
+    let m = lower_tokens(quote! {
+        pub struct Quadruped;
+        body base { mass: 0.001, inertia: diag([1e-6, 1e-6, 1e-5]) }
+        body trunk { mass: 6.0, com: [0.01, 0.0, 0.02], inertia: diag([0.05, 0.12, 0.14]) }
+        joint root: free(ground -> base);
+        joint weld: fixed(base -> trunk) { at: [0.02, 0.0, 0.01], rotation: rpy(0.0, 0.0, 0.1) }
+    })
+    .expect("the merged body is physical");
+    let docs = m.bodies[0].documented(&[], m.skip_triangle_inequality);
+    assert_eq!(
+        docs,
+        [
+            " Note: the inertia of `base` alone violates the triangle inequality I1 + I2 ≥ I3 \
+          (principal moments 1e-6, 1e-6, 1e-5 kg·m²), as a placeholder inertia in a URDF \
+          file may; the inertia rules judge the body merged with `trunk` (welded to it \
+          through fixed joints), which is physical."
+        ]
+    );
+    let e = errors(quote! {
+        pub struct Quadruped;
+        body base { mass: 0.001, inertia: diag([1e-6, 1e-6, 1e-5]) }
+        body trunk { mass: 6.0, inertia: diag([0.1, 0.1, 0.3]) }
+        body lamp { mass: 0.1, shape: point }
+        joint root: free(ground -> base);
+        joint weld: fixed(base -> trunk);
+        joint mount: fixed(trunk -> lamp) { at: [0.0, 0.0, 0.1] }
+    });
+    assert_eq!(
+        e,
+        [
+            "the principal moments of body `base` merged with `trunk`, `lamp` (welded to it \
+          through fixed joints) (0.100985, 0.100985, 0.30001 kg·m²) violate the triangle \
+          inequality I1 + I2 ≥ I3 (0.201969 < 0.30001): no mass distribution has this inertia \
+          (`allow: [triangle_inequality];` accepts it anyway)"
+        ]
+    );
+    // The bodies welded to the ground are merged too; a body alone is judged as declared.
+    let ground = |weld: proc_macro2::TokenStream| {
+        errors(quote! {
+            pub struct P;
+            body stand { mass: 0.001, inertia: diag([1e-6, 1e-6, 1e-5]) }
+            body plate { mass: 2.0, inertia: diag([0.1, 0.1, 0.15]) }
+            body arm { mass: 1.0, com: [0.5, 0.0, 0.0], shape: point }
+            joint weld: fixed(ground -> stand);
+            #weld
+            joint shoulder: revolute(plate -> arm) { axis: z }
+        })
+    };
+    assert_eq!(
+        ground(quote! { joint bolt: fixed(stand -> plate); }),
+        Vec::<String>::new()
+    );
+    assert_eq!(
+        ground(quote! { joint bolt: fixed(ground -> plate); }),
+        Vec::<String>::new()
+    );
+    let e = ground(quote! { joint bolt: revolute(ground -> plate) { axis: z } });
+    assert_eq!(e.len(), 1, "{e:?}");
+    assert!(
+        e[0].starts_with("the principal moments of body `stand` (1e-6, 1e-6, 1e-5 kg·m²)"),
+        "{e:?}"
+    );
 }

@@ -1,5 +1,6 @@
-//! The tree: bodies ordered depth first from the ground (parents first, children in
-//! declaration order, as Pinocchio orders URDF trees), fixed joints merged into composite
+//! The tree: bodies ordered depth first from the ground (parents first, each subtree
+//! contiguous, children in declaration order: the URDF import declares a file's joints
+//! sorted by name, which makes this Pinocchio's order), fixed joints merged into composite
 //! bodies, coordinates numbered, and the rule that every coordinate has inertia.
 //!
 //! A body joined to its parent by a fixed joint becomes a [`Part`] of the parent's tree
@@ -11,8 +12,8 @@ use super::resolved::Resolved;
 use super::rules::{self, GROUND};
 use super::value::{self, nominal3, Value, Vec3};
 use super::{
-    Body, DeclaredBody, DeclaredFrame, DeclaredJoint, Diagnostics, Frame, Joint, JointKind, Load,
-    Model, Part,
+    Body, DeclaredBody, DeclaredFrame, DeclaredJoint, Diagnostics, Frame, Joint, JointKind,
+    JointLimits, Load, Model, Part,
 };
 use crate::syntax::{self, JointKind as Declared};
 use std::collections::HashMap;
@@ -53,6 +54,7 @@ pub(crate) fn build(
     let (mut nq, mut nv) = (0, 0);
     // Bodies welded through fixed joints, in depth-first order: the default frames.
     let mut welded: Vec<usize> = Vec::new();
+    let mut ground_parts: Vec<Part> = Vec::new();
     for j in order {
         let joint = &resolved.joints[j];
         let parent = match joint.parent.text.as_str() {
@@ -73,16 +75,17 @@ pub(crate) fn build(
         let declared = &resolved.bodies[child];
         let kind = match (joint.kind, joint.axis) {
             (Declared::Fixed, _) => {
-                if let Some(b) = parent.body {
-                    bodies[b].parts.push(Part {
-                        name: declared.name.text.clone(),
-                        mass: declared.mass.clone(),
-                        com_in_body: value::add(
-                            &value::rotate(&rotation, &declared.com),
-                            &translation,
-                        ),
-                        inertia_com_in_body: value::rotate_matrix(&rotation, &declared.inertia),
-                    });
+                let part = Part {
+                    name: declared.name.text.clone(),
+                    docs: declared.docs.clone(),
+                    weld: Some((joint.name.text.clone(), joint.docs.clone())),
+                    mass: declared.mass.clone(),
+                    com_in_body: value::add(&value::rotate(&rotation, &declared.com), &translation),
+                    inertia_com_in_body: value::rotate_matrix(&rotation, &declared.inertia),
+                };
+                match parent.body {
+                    Some(b) => bodies[b].parts.push(part),
+                    None => ground_parts.push(part),
                 }
                 attached[child] = Some(Attachment {
                     body: parent.body,
@@ -108,6 +111,13 @@ pub(crate) fn build(
             translation_in_parent: translation,
             armature: joint.armature.0.clone(),
             damping: joint.damping.0.clone(),
+            friction: joint.friction.0,
+            limits: JointLimits {
+                lower: joint.limits.lower.0,
+                upper: joint.limits.upper.0,
+                velocity: joint.limits.velocity.0,
+                effort: joint.limits.effort.0,
+            },
             idx_q: nq,
             idx_v: nv,
             kind,
@@ -131,6 +141,8 @@ pub(crate) fn build(
             joint: tree_joint,
             parts: vec![Part {
                 name: declared.name.text.clone(),
+                docs: Vec::new(),
+                weld: None,
                 mass: declared.mass.clone(),
                 com_in_body: declared.com.clone(),
                 inertia_com_in_body: declared.inertia.clone(),
@@ -157,6 +169,7 @@ pub(crate) fn build(
             declared_body: load.body.text.clone(),
             declared_point: point.clone(),
             kind: load.kind,
+            frame: load.frame(),
             body,
             rotation_in_body: at.rotation,
             point_in_body: value::add(&value::rotate(&at.rotation, &point), &at.translation),
@@ -221,6 +234,7 @@ pub(crate) fn build(
         parameters: resolved.parameters.clone(),
         outputs: resolved.outputs,
         bodies,
+        ground_parts,
         loads,
         frames,
         load_inputs: offset,

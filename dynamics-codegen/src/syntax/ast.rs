@@ -244,13 +244,16 @@ pub struct Constraint {
     pub direction: Option<Axis>,
 }
 
-/// `urdf: "path";` with `floating_base: bool;`.
+/// `urdf: "path";` with `floating_base: bool;` and `urdf_damping: bool;`.
 #[derive(Clone, Debug)]
 pub struct UrdfSource {
     /// The path as written, relative to the crate's manifest directory.
     pub path: syn::LitStr,
     /// Whether the root link gets a free-floating joint.
     pub floating_base: bool,
+    /// Whether the joints' `<dynamics damping>` is imported (`urdf_damping: false;` drops
+    /// it, as Pinocchio's algorithms ignore it).
+    pub damping: bool,
 }
 
 /// `name = nominal` in `parameters: [...]`.
@@ -388,7 +391,8 @@ pub enum JointKind {
     Free,
 }
 
-/// `joint name: kind(parent -> child) { axis: .., at: .., rotation: .., armature: .., damping: .. }`.
+/// `joint name: kind(parent -> child) { axis: .., at: .., rotation: .., armature: .., damping: ..,
+/// friction: .., limits: { .. }, driven: .. }`.
 #[derive(Clone, Debug)]
 pub struct Joint {
     /// Doc comments.
@@ -413,9 +417,30 @@ pub struct Joint {
     pub armature: Option<Number>,
     /// Viscous friction coefficient.
     pub damping: Option<Number>,
+    /// Coulomb (dry) friction, carried to the generated `JOINT_FRICTION`; it enters no
+    /// generated function.
+    pub friction: Option<Number>,
+    /// Position, velocity and effort limits, carried to the generated `JOINT_LIMITS`.
+    pub limits: Option<Limits>,
     /// `driven: true`: an actuator drives the coordinate, so the force analysis solves for
     /// its effort (in a mechanism without constraints every joint is driven).
     pub driven: Option<(bool, Span)>,
+}
+
+/// `limits: { lower: .., upper: .., velocity: .., effort: .. }` on a revolute or prismatic
+/// joint: each entry optional, a missing one unbounded. Constants (not parameters).
+#[derive(Clone, Debug)]
+pub struct Limits {
+    /// Lowest position (rad or m).
+    pub lower: Option<Number>,
+    /// Highest position (rad or m).
+    pub upper: Option<Number>,
+    /// Largest |velocity| (rad/s or m/s).
+    pub velocity: Option<Number>,
+    /// Largest |effort| (N·m or N).
+    pub effort: Option<Number>,
+    /// The whole `{ .. }` block.
+    pub span: SpanRange,
 }
 
 /// What an applied load is made of.
@@ -429,8 +454,19 @@ pub enum LoadKind {
     Wrench,
 }
 
-/// `load name: force on body at [x, y, z];`: a run-time input acting on a body, given in
-/// the body frame, through a point given in the body frame.
+/// The axes a load's run-time components are given in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LoadFrame {
+    /// The loaded body's own axes, turning with it (`in body`, the default).
+    Body,
+    /// The world's fixed axes (`in world`): the generated code turns the components into
+    /// the body's axes, F_in_body = R_bodyᵀ F_in_world.
+    World,
+}
+
+/// `load name: force on body [at [x, y, z]] [in world | in body];`: a run-time input acting
+/// on a body, its components given in the body's axes (or the world's, with `in world`),
+/// through a point fixed on the body and given in the body frame.
 #[derive(Clone, Debug)]
 pub struct Load {
     /// Doc comments.
@@ -443,6 +479,16 @@ pub struct Load {
     pub body: Name,
     /// The point of application in the body frame (the origin when absent).
     pub at: Option<Vector>,
+    /// `in world` or `in body` as written, with the span of the frame's word (the body's
+    /// axes when absent).
+    pub frame: Option<(LoadFrame, Span)>,
+}
+
+impl Load {
+    /// The axes the load's components are given in: the body's unless `in world`.
+    pub fn frame(&self) -> LoadFrame {
+        self.frame.map_or(LoadFrame::Body, |(frame, _)| frame)
+    }
 }
 
 /// `frame name: on body [at [x, y, z]] [rotation ..];`: an operational frame (a tool

@@ -33,7 +33,10 @@ impl Parse for Mechanism {
             analysis: None,
             isa: None,
         };
-        let mut floating_base: Option<bool> = None;
+        // `floating_base:` and `urdf_damping:`, each with the span of its keyword: they
+        // apply to the `urdf:` file, so they are errors without one.
+        let mut floating_base: Option<(bool, Span)> = None;
+        let mut urdf_damping: Option<(bool, Span)> = None;
         // Each setting once: the name and the span of its first occurrence.
         let mut given: Vec<(String, Span)> = Vec::new();
         while !input.is_empty() {
@@ -98,9 +101,15 @@ impl Parse for Mechanism {
                             mechanism.urdf = Some(UrdfSource {
                                 path,
                                 floating_base: false,
+                                damping: true,
                             });
                         }
-                        "floating_base" => floating_base = Some(input.parse::<LitBool>()?.value),
+                        "floating_base" => {
+                            floating_base = Some((parse_flag(input, setting)?, keyword.span()))
+                        }
+                        "urdf_damping" => {
+                            urdf_damping = Some((parse_flag(input, setting)?, keyword.span()))
+                        }
                         "force_analysis" => {
                             let plane: Ident = input.parse()?;
                             let kind = match plane.to_string().as_str() {
@@ -156,15 +165,40 @@ impl Parse for Mechanism {
         mechanism.docs = docs;
         mechanism.visibility = visibility;
         mechanism.name = name;
-        if let (Some(urdf), Some(fb)) = (&mut mechanism.urdf, floating_base) {
-            urdf.floating_base = fb;
+        match &mut mechanism.urdf {
+            Some(urdf) => {
+                if let Some((flag, _)) = floating_base {
+                    urdf.floating_base = flag;
+                }
+                if let Some((flag, _)) = urdf_damping {
+                    urdf.damping = flag;
+                }
+            }
+            None => {
+                let misplaced = [
+                    ("floating_base", floating_base),
+                    ("urdf_damping", urdf_damping),
+                ];
+                if let Some((setting, span)) = misplaced
+                    .into_iter()
+                    .find_map(|(setting, given)| given.map(|(_, span)| (setting, span)))
+                {
+                    return Err(syn::Error::new(
+                        span,
+                        format!(
+                            "`{setting}` applies to a URDF file, and this mechanism imports none; \
+                             add `urdf: \"path/to/robot.urdf\";` or remove `{setting}`"
+                        ),
+                    ));
+                }
+            }
         }
         Ok(mechanism)
     }
 }
 
 /// The mechanism settings, `name: value;`, each given at most once.
-const SETTINGS: [&str; 9] = [
+const SETTINGS: [&str; 10] = [
     "gravity",
     "outputs",
     "frames",
@@ -172,9 +206,21 @@ const SETTINGS: [&str; 9] = [
     "allow",
     "urdf",
     "floating_base",
+    "urdf_damping",
     "force_analysis",
     "isa",
 ];
+
+/// The value of a yes-or-no setting: `true` or `false`.
+fn parse_flag(input: ParseStream, setting: &str) -> syn::Result<bool> {
+    let flag: LitBool = input.parse().map_err(|e| {
+        syn::Error::new(
+            e.span(),
+            format!("expected `true` or `false` after `{setting}:`"),
+        )
+    })?;
+    Ok(flag.value)
+}
 
 /// The item keywords, each followed by a name.
 const ITEMS: [&str; 5] = ["body", "joint", "load", "constraint", "frame"];
@@ -810,6 +856,8 @@ fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
         rotation: None,
         armature: None,
         damping: None,
+        friction: None,
+        limits: None,
         driven: None,
     };
     if !input.peek(syn::token::Brace) {
@@ -823,6 +871,8 @@ fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
             "rotation" => joint.rotation = Some(parse_rotation(content)?),
             "armature" => joint.armature = Some(parse_number(content)?),
             "damping" => joint.damping = Some(parse_number(content)?),
+            "friction" => joint.friction = Some(parse_number(content)?),
+            "limits" => joint.limits = Some(parse_limits(content)?),
             "driven" => {
                 let flag: LitBool = content.parse()?;
                 joint.driven = Some((flag.value, flag.span()));
@@ -834,13 +884,47 @@ fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
     .map_err(|e| {
         with_hint(
             e,
-            "joint fields are axis, at, rotation, armature, damping, driven",
+            "joint fields are axis, at, rotation, armature, damping, friction, limits, driven",
         )
     })?;
     Ok(joint)
 }
 
-/// `load name: force|couple|wrench on body [at [x, y, z]];`.
+/// `{ lower: .., upper: .., velocity: .., effort: .. }`, each entry optional.
+fn parse_limits(input: ParseStream) -> syn::Result<Limits> {
+    let (mut lower, mut upper, mut velocity, mut effort) = (None, None, None, None);
+    let span = parse_fields(input, |field, content| {
+        let slot = match field.to_string().as_str() {
+            "lower" => &mut lower,
+            "upper" => &mut upper,
+            "velocity" => &mut velocity,
+            "effort" => &mut effort,
+            _ => return Ok(false),
+        };
+        *slot = Some(parse_number(content)?);
+        Ok(true)
+    })
+    .map_err(|e| {
+        // Named a limit, not a field, so that the joint's hint is not added after it.
+        match e.to_string().strip_prefix("unknown field") {
+            Some(rest) => syn::Error::new(
+                e.span(),
+                format!("unknown limit{rest}; the limits are lower, upper, velocity, effort"),
+            ),
+            None => e,
+        }
+    })?;
+    Ok(Limits {
+        lower,
+        upper,
+        velocity,
+        effort,
+        span,
+    })
+}
+
+/// `load name: force|couple|wrench on body [at [x, y, z]] [in world | in body];`, the
+/// point and the axes in either order, each at most once.
 fn parse_load(input: ParseStream, docs: Vec<String>) -> syn::Result<Load> {
     let start = input.cursor();
     let name = parse_name(input)?;
@@ -862,16 +946,40 @@ fn parse_load(input: ParseStream, docs: Vec<String>) -> syn::Result<Load> {
         return Err(syn::Error::new(on.span(), "expected `on <body>`"));
     }
     let body = parse_name(input)?;
-    let mut at = None;
-    if input.peek(Ident) && !next_is_new_item(input) {
-        let at_kw: Ident = input.parse()?;
-        if at_kw != "at" {
-            return Err(syn::Error::new(
-                at_kw.span(),
-                "expected `at [x, y, z]` or `;`",
-            ));
+    let (mut at, mut frame): (Option<Vector>, Option<(LoadFrame, Span)>) = (None, None);
+    // The first `in`, for an error at a second one.
+    let mut first_in: Option<Span> = None;
+    loop {
+        if input.peek(Token![in]) {
+            let in_token: Token![in] = input.parse()?;
+            let parsed = parse_load_frame(input, in_token.span)?;
+            if let (Some((first, first_word)), Some(first_in)) = (frame, first_in) {
+                let mut error = SpanRange::new(in_token.span, parsed.1).error(format!(
+                    "the load's axes are given twice (`in {}`, then `in {}`); write `in world` or \
+                     `in body` once",
+                    load_frame_word(first),
+                    load_frame_word(parsed.0)
+                ));
+                error.combine(SpanRange::new(first_in, first_word).error("the first is here"));
+                return Err(error);
+            }
+            first_in = Some(in_token.span);
+            frame = Some(parsed);
+        } else if input.peek(Ident) && !next_is_new_item(input) {
+            let at_kw: Ident = input.parse()?;
+            if at_kw != "at" {
+                return Err(syn::Error::new(
+                    at_kw.span(),
+                    "expected `at [x, y, z]`, `in world`, `in body` or `;`",
+                ));
+            }
+            if at.is_some() {
+                return Err(syn::Error::new(at_kw.span(), "`at` is given twice"));
+            }
+            at = Some(parse_vector(input)?);
+        } else {
+            break;
         }
-        at = Some(parse_vector(input)?);
     }
     semicolon(input, start)?;
     Ok(Load {
@@ -880,7 +988,49 @@ fn parse_load(input: ParseStream, docs: Vec<String>) -> syn::Result<Load> {
         kind,
         body,
         at,
+        frame,
     })
+}
+
+/// The words that may follow a load's `in`.
+const LOAD_FRAMES: [&str; 2] = ["world", "body"];
+
+/// The word of a load frame, as written after `in`.
+fn load_frame_word(frame: LoadFrame) -> &'static str {
+    match frame {
+        LoadFrame::World => "world",
+        LoadFrame::Body => "body",
+    }
+}
+
+/// The word after a load's `in`: `world` or `body`, with its span (the `in`'s when the
+/// word is missing).
+fn parse_load_frame(input: ParseStream, in_span: Span) -> syn::Result<(LoadFrame, Span)> {
+    let axes = "`in world` (the world's fixed axes) or `in body` (the loaded body's axes, the \
+                default)";
+    let Ok(word) = input.call(Ident::parse_any) else {
+        let at = if input.is_empty() {
+            in_span
+        } else {
+            input.span()
+        };
+        return Err(syn::Error::new(
+            at,
+            format!("expected `world` or `body` after `in`: a load's components are given {axes}"),
+        ));
+    };
+    match word.to_string().as_str() {
+        "world" => Ok((LoadFrame::World, word.span())),
+        "body" => Ok((LoadFrame::Body, word.span())),
+        other => {
+            let hint = match closest(other, &LOAD_FRAMES) {
+                Some(near) => format!("did you mean `in {near}`? A load's components are given"),
+                None => "a load's components are given".to_owned(),
+            };
+            Err(SpanRange::new(in_span, word.span())
+                .error(format!("unknown load axes `in {other}`; {hint} {axes}")))
+        }
+    }
 }
 
 /// Whether the next tokens start another item (a doc comment, the type, a setting
@@ -1065,6 +1215,49 @@ mod tests {
         assert_eq!(m.joints[0].parent.text, "ground");
         assert_eq!(m.loads[0].kind, LoadKind::Force);
         assert_eq!(m.outputs.as_ref().map(Vec::len), Some(2));
+    }
+
+    /// A load's components are in the body's axes unless `in world`; the point and the
+    /// axes come in either order, each once; a misspelt frame names the word meant.
+    #[test]
+    fn loads_take_their_axes_after_in() {
+        let frames = |load: proc_macro2::TokenStream| {
+            parse(quote! { struct P; #load }).map(|m| {
+                let load = &m.loads[0];
+                (load.frame(), load.at.is_some())
+            })
+        };
+        let ok = |load| frames(load).expect("parses");
+        assert_eq!(ok(quote!(load l: force on b;)), (LoadFrame::Body, false));
+        assert_eq!(
+            ok(quote!(load l: force on b at [0.0, 0.0, 0.1] in world;)),
+            (LoadFrame::World, true)
+        );
+        assert_eq!(
+            ok(quote!(load l: wrench on b in world at [0.0, 0.0, 0.1];)),
+            (LoadFrame::World, true)
+        );
+        assert_eq!(
+            ok(quote!(load l: couple on b in body;)),
+            (LoadFrame::Body, false)
+        );
+        let error = |load| frames(load).expect_err("rejected").to_string();
+        let e = error(quote!(load l: force on b in wrold;));
+        assert!(
+            e.contains("unknown load axes `in wrold`; did you mean `in world`?"),
+            "{e}"
+        );
+        let e = error(quote!(load l: force on b in space;));
+        assert!(
+            e.contains("unknown load axes `in space`;") && !e.contains("did you mean"),
+            "{e}"
+        );
+        let e = error(quote!(load l: force on b in world in world;));
+        assert!(e.contains("the load's axes are given twice"), "{e}");
+        let e = error(quote!(load l: force on b in;));
+        assert!(e.contains("expected `world` or `body` after `in`"), "{e}");
+        let e = error(quote!(load l: force on b at [0.0, 0.0, 0.0] at [1.0, 0.0, 0.0];));
+        assert!(e.contains("`at` is given twice"), "{e}");
     }
 
     #[test]

@@ -1,13 +1,19 @@
-//! Building a validated [`Model`] from declared bodies, joints and operational frames.
+//! Building a validated [`Model`] from declared bodies, joints, operational frames and
+//! applied loads.
 //!
-//! `build` checks every rule of [`super::rules`], resolves names, orders the bodies so that
-//! `parent[i] < i` (depth first, in declaration order, as Pinocchio orders URDF trees), merges
-//! bodies joined by fixed joints into composite bodies (parallel-axis theorem), numbers
-//! the coordinates, and places every frame (each declared body's, then each declared
-//! [`FrameSpec`]) on the tree body it moves with.
+//! `build` checks every rule of [`super::rules`] (the inertia rules on the bodies as merged
+//! through fixed joints), resolves names, orders the bodies so that `parent[i] < i` (depth
+//! first, each subtree contiguous, children in declaration order: Pinocchio's order when
+//! the joints are declared as the URDF import declares them, sorted by name), merges bodies
+//! joined by fixed joints into composite bodies (parallel-axis theorem), numbers the
+//! coordinates, and places every frame (each declared body's, then each declared
+//! [`FrameSpec`]) on the tree body it moves with, and every [`LoadSpec`] likewise.
 
 use super::error::{ModelError, ModelErrors};
-use super::{rules, Body, Frame, Inertia, Joint, JointKind, Model, Placement, GROUND};
+use super::{
+    rules, Body, Frame, Inertia, Joint, JointKind, Load, LoadFrame, LoadType, Model, Placement,
+    GROUND,
+};
 use nalgebra::Vector3;
 use std::collections::{HashMap, HashSet};
 
@@ -172,12 +178,78 @@ impl FrameSpec {
     }
 }
 
-/// Collects bodies, joints, frames and gravity, then validates them into a [`Model`].
+/// A declared applied load: a run-time force, couple or both acting on a declared body,
+/// the force through a point fixed on the body, given in the body's frame. Its run-time
+/// components ([`LoadType::input_count`] of them) are given in the body's axes, or in the
+/// world's with [`LoadSpec::in_world`] (the language's `in world`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoadSpec {
+    /// Unique name among the loads.
+    pub name: String,
+    /// The declared body it acts on (merged through fixed joints or not).
+    pub body: String,
+    /// Force, couple or both.
+    pub kind: LoadType,
+    /// The point of application in the declared body's frame (the force's line of action
+    /// passes through it; a couple ignores it).
+    pub point: [f64; 3],
+    /// The axes its components are given in.
+    pub frame: LoadFrame,
+}
+
+impl LoadSpec {
+    fn new(name: &str, body: &str, kind: LoadType) -> Self {
+        LoadSpec {
+            name: name.to_owned(),
+            body: body.to_owned(),
+            kind,
+            point: [0.0; 3],
+            frame: LoadFrame::Body,
+        }
+    }
+
+    /// A force (3 inputs) on declared body `body`, through its origin until [`Self::at`],
+    /// in its axes until [`Self::in_world`].
+    pub fn force(name: &str, body: &str) -> Self {
+        Self::new(name, body, LoadType::Force)
+    }
+
+    /// A couple (3 inputs) on declared body `body`, in its axes until [`Self::in_world`].
+    pub fn couple(name: &str, body: &str) -> Self {
+        Self::new(name, body, LoadType::Couple)
+    }
+
+    /// A force and a couple (6 inputs, the force first) on declared body `body`.
+    pub fn wrench(name: &str, body: &str) -> Self {
+        Self::new(name, body, LoadType::Wrench)
+    }
+
+    /// The point of application, in the declared body's frame.
+    pub fn at(mut self, point: [f64; 3]) -> Self {
+        self.point = point;
+        self
+    }
+
+    /// The components are given in the world's fixed axes (the point stays fixed on the
+    /// body).
+    pub fn in_world(self) -> Self {
+        self.in_frame(LoadFrame::World)
+    }
+
+    /// The components are given in the axes `frame` names.
+    pub fn in_frame(mut self, frame: LoadFrame) -> Self {
+        self.frame = frame;
+        self
+    }
+}
+
+/// Collects bodies, joints, frames, loads and gravity, then validates them into a [`Model`].
 #[derive(Clone, Debug, Default)]
 pub struct ModelBuilder {
     bodies: Vec<BodySpec>,
     joints: Vec<JointSpec>,
     frames: Vec<FrameSpec>,
+    loads: Vec<LoadSpec>,
     gravity_in_world: [f64; 3],
     skip_triangle_inequality: bool,
 }
@@ -213,6 +285,13 @@ impl ModelBuilder {
         self
     }
 
+    /// Adds an applied load. [`Model::loads`] lists the loads in the order they were added,
+    /// and their components are consecutive entries of the loads input in that order.
+    pub fn load(mut self, load: LoadSpec) -> Self {
+        self.loads.push(load);
+        self
+    }
+
     /// Accepts inertias whose principal moments violate I1 + I2 ≥ I3. No real body has them,
     /// but some published models do (for example planar links given as laminae with products
     /// of inertia); the dynamics stay well defined as long as I_G is positive semi-definite.
@@ -227,6 +306,7 @@ impl ModelBuilder {
         self.check_numbers(&mut errors);
         let tree = self.resolve_tree(&mut errors);
         self.resolve_frames(&mut errors);
+        self.resolve_loads(&mut errors);
         match tree {
             Some(order) if errors.is_empty() => {
                 let model = self.assemble(&order);
@@ -255,11 +335,13 @@ impl ModelBuilder {
             rules::body_numbers_are_finite(body, errors);
             rules::mass_is_not_negative(body, errors);
             rules::inertia_is_symmetric(body, errors);
-            rules::inertia_is_positive(body, errors);
-            if !self.skip_triangle_inequality {
-                rules::inertia_satisfies_triangle(body, errors);
-            }
         }
+        rules::merged_inertias_are_physical(
+            &self.bodies,
+            &self.joints,
+            !self.skip_triangle_inequality,
+            errors,
+        );
         for joint in &self.joints {
             rules::joint_numbers_are_finite(joint, errors);
             rules::axis_is_nonzero(joint, errors);
@@ -269,6 +351,35 @@ impl ModelBuilder {
         for frame in &self.frames {
             rules::frame_numbers_are_finite(frame, errors);
             rules::frame_rotation_is_proper(frame, errors);
+        }
+        for load in &self.loads {
+            if let Some(v) = load.point.iter().find(|v| !v.is_finite()) {
+                errors.push(ModelError::NonFinite {
+                    item: format!("load `{}`", load.name),
+                    field: "point",
+                    value: *v,
+                });
+            }
+        }
+    }
+
+    /// Checks that every load acts on a declared body and has a name no other load has.
+    fn resolve_loads(&self, errors: &mut Vec<ModelError>) {
+        let body_names: HashSet<&str> = self.bodies.iter().map(|b| b.name.as_str()).collect();
+        let mut load_names: HashSet<&str> = HashSet::new();
+        for load in &self.loads {
+            if !body_names.contains(load.body.as_str()) {
+                errors.push(ModelError::UnknownLoadBody {
+                    load: load.name.clone(),
+                    body: load.body.clone(),
+                });
+            }
+            if !load_names.insert(&load.name) {
+                errors.push(ModelError::DuplicateName {
+                    kind: "load",
+                    name: load.name.clone(),
+                });
+            }
         }
     }
 
@@ -488,9 +599,35 @@ impl ModelBuilder {
                 placement_in_body,
             });
         }
+        // Loads: the declared body's pose in its tree body carries the point and the body's
+        // axes (`resolve_loads` checked the names; an unknown one cannot reach here, and
+        // would act on the ground, that is on nothing, rather than panic).
+        let mut input_offset = 0;
+        let loads = self
+            .loads
+            .iter()
+            .map(|spec| {
+                let (body, body_pose) = index_of
+                    .get(spec.body.as_str())
+                    .and_then(|&b| attached[b].clone())
+                    .unwrap_or((None, Placement::identity()));
+                let load = Load {
+                    name: spec.name.clone(),
+                    kind: spec.kind,
+                    frame: spec.frame,
+                    body,
+                    placement_in_body: body_pose.compose(&Placement::translation(spec.point)),
+                    input_offset,
+                };
+                input_offset += spec.kind.input_count();
+                load
+            })
+            .collect();
         Model {
             bodies,
             frames,
+            loads,
+            num_load_inputs: input_offset,
             gravity_in_world: Vector3::from(self.gravity_in_world),
             nq,
             nv,

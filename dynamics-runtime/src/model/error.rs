@@ -37,18 +37,26 @@ pub enum ModelError {
         /// `I[col][row]`.
         lower: f64,
     },
-    /// I_G has a negative principal moment.
+    /// I_G of a body, as merged with the bodies welded to it, has a negative principal
+    /// moment.
     InertiaNotPositive {
         /// The body.
         body: String,
-        /// Principal moments, ascending.
+        /// The bodies welded to it through fixed joints (merged into it; empty for a body
+        /// judged alone).
+        welded: Vec<String>,
+        /// Principal moments of the merged I_G, ascending.
         principal_moments: [f64; 3],
     },
-    /// The principal moments violate I1 + I2 ≥ I3 (no real mass distribution has them).
+    /// The principal moments of a body, as merged with the bodies welded to it, violate
+    /// I1 + I2 ≥ I3 (no real mass distribution has them).
     TriangleInequality {
         /// The body.
         body: String,
-        /// Principal moments, ascending.
+        /// The bodies welded to it through fixed joints (merged into it; empty for a body
+        /// judged alone).
+        welded: Vec<String>,
+        /// Principal moments of the merged I_G, ascending.
         principal_moments: [f64; 3],
     },
     /// A body moved by a joint has, with everything it carries, zero mass and zero inertia:
@@ -98,9 +106,9 @@ pub enum ModelError {
         /// The name it used.
         name: String,
     },
-    /// Two bodies or two joints share a name.
+    /// Two bodies, two joints or two loads share a name.
     DuplicateName {
-        /// "body" or "joint".
+        /// "body", "joint" or "load".
         kind: &'static str,
         /// The name.
         name: String,
@@ -155,6 +163,13 @@ pub enum ModelError {
         /// The body name it used.
         body: String,
     },
+    /// A load acts on a body that was not declared.
+    UnknownLoadBody {
+        /// The load.
+        load: String,
+        /// The body name it used.
+        body: String,
+    },
     /// A declared frame's name is already taken: by a declared body (every body is a
     /// frame), by the ground, or by another declared frame.
     DuplicateFrameName {
@@ -204,21 +219,27 @@ impl fmt::Display for ModelError {
             ),
             InertiaNotPositive {
                 body,
+                welded,
                 principal_moments: p,
             } => write!(
                 f,
-                "body `{body}`: inertia is not positive semi-definite: principal moments are \
+                "body `{body}`{}: inertia is not positive semi-definite: principal moments are \
                  {}, {}, {} kg·m²; every principal moment must be ≥ 0 (check the signs of the \
                  products of inertia)",
-                p[0], p[1], p[2]
+                merged_with(welded),
+                p[0],
+                p[1],
+                p[2]
             ),
             TriangleInequality {
                 body,
+                welded,
                 principal_moments: p,
             } => write!(
                 f,
-                "body `{body}`: principal moments {}, {}, {} kg·m² violate the triangle \
+                "body `{body}`{}: principal moments {}, {}, {} kg·m² violate the triangle \
                  inequality I1 + I2 ≥ I3 ({} < {}); no mass distribution has this inertia",
+                merged_with(welded),
                 p[0],
                 p[1],
                 p[2],
@@ -304,6 +325,11 @@ impl fmt::Display for ModelError {
                 "frame `{frame}`: body `{body}` is not a declared body (nor `ground`); attach \
                  the frame to a declared body"
             ),
+            UnknownLoadBody { load, body } => write!(
+                f,
+                "load `{load}`: body `{body}` is not a declared body; a load acts on a declared \
+                 body"
+            ),
             DuplicateFrameName { frame, taken_by } => write!(
                 f,
                 "frame `{frame}`: the name is already taken by {taken_by}; frame names must \
@@ -379,4 +405,17 @@ impl SizeError {
             })
         }
     }
+}
+
+/// ` merged with `a`, `b` (welded through fixed joints)` for the bodies welded to one, or
+/// nothing.
+fn merged_with(welded: &[String]) -> String {
+    if welded.is_empty() {
+        return String::new();
+    }
+    let names: Vec<String> = welded.iter().map(|w| format!("`{w}`")).collect();
+    format!(
+        " merged with {} (welded through fixed joints)",
+        names.join(", ")
+    )
 }

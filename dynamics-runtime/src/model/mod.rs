@@ -17,7 +17,8 @@
 //!
 //! Its frames ([`Model::frames`]) are every declared body's frame (merged or not), then
 //! every operational frame declared with [`FrameSpec`], each placed in the tree body it
-//! moves with.
+//! moves with; its loads ([`Model::loads`], declared with [`LoadSpec`]) are placed the same
+//! way.
 
 mod builder;
 mod error;
@@ -25,7 +26,7 @@ mod rules;
 #[cfg(test)]
 mod tests;
 
-pub use builder::{BodySpec, FrameSpec, JointSpec, JointType, ModelBuilder};
+pub use builder::{BodySpec, FrameSpec, JointSpec, JointType, LoadSpec, ModelBuilder};
 pub use error::{ModelError, ModelErrors, SizeError};
 
 use nalgebra::{Matrix3, Vector3};
@@ -233,11 +234,64 @@ pub struct Frame {
     pub placement_in_body: Placement,
 }
 
+/// What an applied load is made of.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LoadType {
+    /// A force through the load's point (3 inputs).
+    Force,
+    /// A couple (3 inputs).
+    Couple,
+    /// A force through the load's point and a couple (6 inputs, the force first).
+    Wrench,
+}
+
+impl LoadType {
+    /// Number of run-time inputs: 3 for a force or a couple, 6 for a wrench.
+    pub fn input_count(self) -> usize {
+        match self {
+            LoadType::Wrench => 6,
+            LoadType::Force | LoadType::Couple => 3,
+        }
+    }
+}
+
+/// The axes an applied load's run-time components are given in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LoadFrame {
+    /// The axes of the declared body it acts on, turning with it (the default).
+    #[default]
+    Body,
+    /// The world's fixed axes (the language's `in world`).
+    World,
+}
+
+/// An applied load on a body of the tree, declared with [`LoadSpec`]: its components are
+/// entries `input_offset..input_offset + kind.input_count()` of the loads input.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Load {
+    /// The load's name.
+    pub name: String,
+    /// Force, couple or both.
+    pub kind: LoadType,
+    /// The axes its components are given in.
+    pub frame: LoadFrame,
+    /// The body of the tree it acts on, `None` for a body welded to the ground (where it
+    /// does no work).
+    pub body: Option<usize>,
+    /// The declared body's axes (rotation) and the point of application (translation), in
+    /// that tree body's frame.
+    pub placement_in_body: Placement,
+    /// Index of its first component in the loads input.
+    pub input_offset: usize,
+}
+
 /// A validated mechanism: a tree of bodies ordered parents first.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Model {
     pub(crate) bodies: Vec<Body>,
     pub(crate) frames: Vec<Frame>,
+    pub(crate) loads: Vec<Load>,
+    pub(crate) num_load_inputs: usize,
     pub(crate) gravity_in_world: Vector3<f64>,
     pub(crate) nq: usize,
     pub(crate) nv: usize,
@@ -254,6 +308,16 @@ impl Model {
     /// reference's frame methods take an index into this list.
     pub fn frames(&self) -> &[Frame] {
         &self.frames
+    }
+
+    /// The applied loads, in the order they were added ([`ModelBuilder::load`]).
+    pub fn loads(&self) -> &[Load] {
+        &self.loads
+    }
+
+    /// Length of the loads input: 3 per force or couple, 6 per wrench.
+    pub fn num_load_inputs(&self) -> usize {
+        self.num_load_inputs
     }
 
     /// Gravity in the world frame (m/s²).

@@ -20,7 +20,7 @@
 use super::builder::JointType;
 use super::builder::{BodySpec, FrameSpec, JointSpec};
 use super::error::ModelError;
-use super::matrix_from_rows;
+use super::{matrix_from_rows, Placement, GROUND};
 use nalgebra::{Matrix3, SymmetricEigen};
 
 /// Relative tolerance of the inertia rules (symmetry, semi-definiteness, triangle).
@@ -104,9 +104,14 @@ pub(crate) fn principal_moments(inertia: &Matrix3<f64>) -> [f64; 3] {
 }
 
 /// Rule: I_G is positive semi-definite: every principal moment is ≥ 0. (Zero moments are
-/// allowed: a thin rod about its own axis, a point mass.)
-pub(crate) fn inertia_is_positive(body: &BodySpec, errors: &mut Vec<ModelError>) {
-    let m = &body.inertia.inertia_com_in_body;
+/// allowed: a thin rod about its own axis, a point mass.) `body` and `welded` name the
+/// body judged and the bodies merged into it.
+fn inertia_is_positive(
+    body: &str,
+    welded: &[String],
+    m: &Matrix3<f64>,
+    errors: &mut Vec<ModelError>,
+) {
     if !m.iter().all(|v| v.is_finite()) {
         return;
     }
@@ -114,7 +119,8 @@ pub(crate) fn inertia_is_positive(body: &BodySpec, errors: &mut Vec<ModelError>)
     let margin = slack(m.amax());
     if p[0] < -INERTIA_TOLERANCE * p[2].abs().max(f64::MIN_POSITIVE) - margin {
         errors.push(ModelError::InertiaNotPositive {
-            body: body.name.clone(),
+            body: body.to_owned(),
+            welded: welded.to_vec(),
             principal_moments: p,
         });
     }
@@ -122,8 +128,12 @@ pub(crate) fn inertia_is_positive(body: &BodySpec, errors: &mut Vec<ModelError>)
 
 /// Rule: the principal moments satisfy the triangle inequality I1 + I2 ≥ I3, which every
 /// real mass distribution does (I1 + I2 − I3 = 2∫ z² dm ≥ 0 in principal axes).
-pub(crate) fn inertia_satisfies_triangle(body: &BodySpec, errors: &mut Vec<ModelError>) {
-    let m = &body.inertia.inertia_com_in_body;
+fn inertia_satisfies_triangle(
+    body: &str,
+    welded: &[String],
+    m: &Matrix3<f64>,
+    errors: &mut Vec<ModelError>,
+) {
     if !m.iter().all(|v| v.is_finite()) {
         return;
     }
@@ -134,9 +144,113 @@ pub(crate) fn inertia_satisfies_triangle(body: &BodySpec, errors: &mut Vec<Model
     let positive = p[0] >= -INERTIA_TOLERANCE * p[2].abs().max(f64::MIN_POSITIVE) + margin;
     if positive && p[0] + p[1] < p[2] - INERTIA_TOLERANCE * (p[0] + p[1] + p[2]) - margin {
         errors.push(ModelError::TriangleInequality {
-            body: body.name.clone(),
+            body: body.to_owned(),
+            welded: welded.to_vec(),
             principal_moments: p,
         });
+    }
+}
+
+/// A body of a group welded together: its index and its pose in the group's frame (the
+/// root body's, or the world's for the bodies welded to the ground).
+type Member = (usize, Placement);
+
+/// Whether a body's numbers are fit for the merged-inertia rules: finite, its mass not
+/// negative, its inertia symmetric (otherwise other rules report it, and the merged body
+/// is not judged).
+fn judgeable(body: &BodySpec) -> bool {
+    let mut errors = Vec::new();
+    body_numbers_are_finite(body, &mut errors);
+    mass_is_not_negative(body, &mut errors);
+    inertia_is_symmetric(body, &mut errors);
+    errors.is_empty()
+}
+
+/// Rule: the inertia of each body of the dynamics, the declared bodies welded together
+/// through fixed joints merged into one (a group welded to the ground is one too), is
+/// positive semi-definite and, unless `triangle` is false, satisfies the triangle
+/// inequality: a link's placeholder inertia welded to a real body is accepted, a merged body
+/// that is not physical is not. A body welded to nothing is judged as declared.
+///
+/// Each body walks up through the fixed joint naming it as child (the first such joint) to
+/// a body moved otherwise, or to the ground, composing the placements; a walk that meets an
+/// unknown parent or loops (rules of their own report both) stops there. The groups are
+/// judged in the order of their first declared member; a group of several with a member
+/// that is not [`judgeable`] is not judged.
+pub(crate) fn merged_inertias_are_physical(
+    bodies: &[BodySpec],
+    joints: &[JointSpec],
+    triangle: bool,
+    errors: &mut Vec<ModelError>,
+) {
+    let index = |name: &str| bodies.iter().position(|b| b.name == name);
+    let parent_joint = |name: &str| {
+        joints
+            .iter()
+            .find(|j| j.child == name && j.parent != j.child)
+    };
+    let mut groups: Vec<(Option<usize>, Vec<Member>)> = Vec::new();
+    for b in 0..bodies.len() {
+        let (mut at, mut pose, mut root) = (b, Placement::identity(), Some(b));
+        for _ in 0..=bodies.len() {
+            let Some(joint) = parent_joint(&bodies[at].name).filter(|j| j.kind == JointType::Fixed)
+            else {
+                root = Some(at);
+                break;
+            };
+            pose = Placement::new(joint.translation, joint.rotation_rows).compose(&pose);
+            if joint.parent == GROUND {
+                root = None;
+                break;
+            }
+            match index(&joint.parent) {
+                Some(parent) => at = parent,
+                None => {
+                    root = Some(at);
+                    break;
+                }
+            }
+        }
+        if root == Some(b) {
+            pose = Placement::identity();
+        }
+        match groups.iter_mut().find(|(r, _)| *r == root) {
+            Some((_, members)) => members.push((b, pose)),
+            None => groups.push((root, vec![(b, pose)])),
+        }
+    }
+    for (root, mut members) in groups {
+        if let Some(k) = members.iter().position(|(b, _)| Some(*b) == root) {
+            let first = members.remove(k);
+            members.insert(0, first);
+        }
+        // A body alone is judged as before merging was considered; merged ones only when
+        // each is judgeable.
+        if members.len() > 1 && !members.iter().all(|(b, _)| judgeable(&bodies[*b])) {
+            continue;
+        }
+        let inertia = match members.as_slice() {
+            [(only, _)] => bodies[*only].inertia.inertia_com_in_body,
+            _ => {
+                let merged = members
+                    .iter()
+                    .map(|(b, pose)| bodies[*b].inertia.transformed(pose))
+                    .reduce(|sum, part| sum.combined(&part));
+                match merged {
+                    Some(merged) => merged.inertia_com_in_body,
+                    None => continue,
+                }
+            }
+        };
+        let Some(((first, _), rest)) = members.split_first() else {
+            continue;
+        };
+        let name = &bodies[*first].name;
+        let welded: Vec<String> = rest.iter().map(|(b, _)| bodies[*b].name.clone()).collect();
+        inertia_is_positive(name, &welded, &inertia, errors);
+        if triangle {
+            inertia_satisfies_triangle(name, &welded, &inertia, errors);
+        }
     }
 }
 

@@ -112,6 +112,80 @@ fn inertia_not_positive() {
     assert!(m.contains("not positive semi-definite"), "{m}");
 }
 
+/// A placeholder `base` (alone, 1e-6 + 1e-6 < 1e-5) welded to `trunk` with `inertia`, on a
+/// free joint, and a leg on a revolute joint.
+fn placeholder_base(trunk: [[f64; 3]; 3]) -> ModelBuilder {
+    let diagonal = |d: [f64; 3]| [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
+    ModelBuilder::new()
+        .body(BodySpec::new(
+            "base",
+            Inertia::new(0.001, [0.0; 3], diagonal([1e-6, 1e-6, 1e-5])),
+        ))
+        .body(BodySpec::new(
+            "trunk",
+            Inertia::new(6.0, [0.01, 0.0, 0.02], trunk),
+        ))
+        .body(rod("leg"))
+        .joint(JointSpec::free_flyer("root", "base"))
+        .joint(JointSpec::fixed("weld", "base", "trunk").at([0.02, 0.0, 0.01]))
+        .joint(JointSpec::revolute("hip", "trunk", "leg", [0.0, 1.0, 0.0]))
+}
+
+#[test]
+fn inertia_rules_judge_bodies_merged_through_fixed_joints() {
+    let model = placeholder_base([[0.05, 0.0, 0.0], [0.0, 0.12, 0.0], [0.0, 0.0, 0.14]])
+        .build()
+        .expect("the merged body is physical");
+    assert_eq!(model.bodies()[0].inertia.mass, 6.001);
+    let (e, m) = only_error(placeholder_base([
+        [0.1, 0.0, 0.0],
+        [0.0, 0.1, 0.0],
+        [0.0, 0.0, 0.3],
+    ]));
+    assert!(
+        matches!(e, ModelError::TriangleInequality { ref body, ref welded, .. }
+            if body == "base" && welded == &["trunk"]),
+        "{e:?}"
+    );
+    assert!(
+        m.starts_with("body `base` merged with `trunk` (welded through fixed joints): principal"),
+        "{m}"
+    );
+    // Welded to the ground, the bodies are merged too.
+    let ground = |kind: JointType| {
+        let mut weld = JointSpec::revolute("bolt", GROUND, "trunk", [0.0, 0.0, 1.0]);
+        weld.kind = kind;
+        ModelBuilder::new()
+            .body(BodySpec::new(
+                "stand",
+                Inertia::new(
+                    0.001,
+                    [0.0; 3],
+                    [[1e-6, 0.0, 0.0], [0.0, 1e-6, 0.0], [0.0, 0.0, 1e-5]],
+                ),
+            ))
+            .body(BodySpec::new(
+                "trunk",
+                Inertia::new(
+                    2.0,
+                    [0.0, 0.0, 0.1],
+                    [[0.05, 0.0, 0.0], [0.0, 0.05, 0.0], [0.0, 0.0, 0.05]],
+                ),
+            ))
+            .body(rod("leg"))
+            .joint(JointSpec::fixed("stand_weld", GROUND, "stand"))
+            .joint(weld)
+            .joint(JointSpec::revolute("hip", "trunk", "leg", [0.0, 1.0, 0.0]))
+    };
+    ground(JointType::Fixed).build().expect("merged, physical");
+    let (e, _) = only_error(ground(JointType::Revolute));
+    assert!(
+        matches!(e, ModelError::TriangleInequality { ref body, ref welded, .. }
+            if body == "stand" && welded.is_empty()),
+        "{e:?}"
+    );
+}
+
 #[test]
 fn triangle_inequality() {
     let (e, m) = only_error(with_body_inertia(
@@ -676,4 +750,65 @@ fn frame_errors_are_collected_with_the_tree_errors() {
         ]
     );
     assert_eq!(errors.to_string().lines().count(), 4);
+}
+
+#[test]
+fn loads_are_placed_on_the_tree_body_and_numbered() {
+    // A force on a body welded 1 m along x and turned a quarter turn about z: its point and
+    // the declared body's axes are carried into the moving body's frame.
+    let quarter = [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+    let model = pendulum()
+        .body(rod("tip"))
+        .joint(JointSpec::fixed("weld", "rod", "tip").placed([1.0, 0.0, 0.0], quarter))
+        .load(LoadSpec::force("push", "tip").at([0.5, 0.0, 0.0]))
+        .load(LoadSpec::wrench("wind", "rod").in_world())
+        .load(LoadSpec::couple("twist", "rod").in_frame(LoadFrame::Body))
+        .build()
+        .expect("valid");
+    let loads = model.loads();
+    assert_eq!(model.num_load_inputs(), 12);
+    assert_eq!(
+        loads
+            .iter()
+            .map(|l| (l.name.as_str(), l.kind, l.frame, l.body, l.input_offset))
+            .collect::<Vec<_>>(),
+        [
+            ("push", LoadType::Force, LoadFrame::Body, Some(0), 0),
+            ("wind", LoadType::Wrench, LoadFrame::World, Some(0), 3),
+            ("twist", LoadType::Couple, LoadFrame::Body, Some(0), 9),
+        ]
+    );
+    let push = &loads[0].placement_in_body;
+    assert!((push.translation - nalgebra::Vector3::new(1.0, 0.5, 0.0)).amax() < 1e-15);
+    assert_eq!(push.rotation, matrix_from_rows(quarter));
+}
+
+#[test]
+fn a_load_names_a_declared_body_and_a_name_of_its_own() {
+    let (e, message) = only_error(pendulum().load(LoadSpec::force("push", "rdo")));
+    assert_eq!(
+        e,
+        ModelError::UnknownLoadBody {
+            load: "push".into(),
+            body: "rdo".into()
+        }
+    );
+    assert!(message.contains("load `push`: body `rdo` is not a declared body"));
+    let (e, _) = only_error(pendulum().load(LoadSpec::force("push", GROUND)));
+    assert!(matches!(e, ModelError::UnknownLoadBody { .. }));
+    let (e, message) = only_error(
+        pendulum()
+            .load(LoadSpec::force("push", "rod"))
+            .load(LoadSpec::couple("push", "rod")),
+    );
+    assert_eq!(
+        e,
+        ModelError::DuplicateName {
+            kind: "load",
+            name: "push".into()
+        }
+    );
+    assert!(message.contains("two loads are named `push`"));
+    let (e, _) = only_error(pendulum().load(LoadSpec::force("push", "rod").at([f64::NAN; 3])));
+    assert!(matches!(e, ModelError::NonFinite { field: "point", .. }));
 }

@@ -10,6 +10,7 @@
 //! - `kinematics`: placements, velocities and accelerations, the body poses in the world,
 //!   the centre of mass;
 //! - `frames`: operational frames: poses, Jacobians, velocities, classical accelerations;
+//! - `loads`: the applied loads as generalized forces, Q = Σ J_Pᵀ F + J_ωᵀ M;
 //! - `centroidal`: the centroidal momentum h_G and its rate ḣ_G;
 //! - `rnea`: recursive Newton–Euler in the textbook's mass-centre form (inverse dynamics,
 //!   gravity, bias, nonlinear effects, joint reactions);
@@ -44,6 +45,7 @@ mod frame_tests;
 mod pinocchio_frames;
 mod frames;
 mod kinematics;
+mod loads;
 pub use frames::FrameError;
 pub(crate) use kinematics::quaternion_rotation;
 mod rnea;
@@ -197,6 +199,7 @@ pub struct Reference<'m, T: Scalar> {
     gravity_in_world: Vector3<T>,
     bodies: Vec<BodyConstants<T>>,
     frames: Vec<FrameConstants<T>>,
+    loads: Vec<loads::LoadConstants<T>>,
     scratch: Vec<BodyScratch<T>>,
     /// Pose of every body frame in the world.
     poses: Vec<Pose<T>>,
@@ -285,6 +288,18 @@ impl<'m, T: Scalar> Reference<'m, T> {
                 origin_frame_in_body: vec3(&frame.placement_in_body.translation),
             })
             .collect();
+        let loads = model
+            .loads()
+            .iter()
+            .map(|load| loads::LoadConstants {
+                body: load.body,
+                kind: load.kind,
+                frame: load.frame,
+                rotation_declared_in_body: mat3(&load.placement_in_body.rotation),
+                point_in_body: vec3(&load.placement_in_body.translation),
+                input_offset: load.input_offset,
+            })
+            .collect();
         let nv = model.nv();
         Reference {
             model,
@@ -292,6 +307,7 @@ impl<'m, T: Scalar> Reference<'m, T> {
             poses: vec![Pose::identity(); bodies.len()],
             bodies,
             frames,
+            loads,
             scratch,
             jacobian_column_in_world: vec![zero6; nv],
             jacobian_rate_column_in_world: vec![zero6; nv],
@@ -344,7 +360,7 @@ mod tests {
         solve_spd6, spatial_inertia,
     };
     use super::*;
-    use crate::model::{BodySpec, Inertia, JointSpec, ModelBuilder};
+    use crate::model::{BodySpec, Inertia, JointSpec, LoadFrame, LoadSpec, LoadType, ModelBuilder};
     use nalgebra::DMatrix;
 
     /// A free-flyer base carrying a revolute and a prismatic joint.
@@ -469,6 +485,99 @@ mod tests {
         assert!(r.body_poses(short_q).is_err());
         // And the right lengths work.
         assert!(r.joint_reactions(&q, &v, &a, Some(&w), &mut w_out).is_ok());
+    }
+
+    /// [`small_tree`] with a tool welded to the arm (turned and offset) and three loads: a
+    /// force on the tool in its own axes, a wrench on the slider in world axes, a couple on
+    /// the base in world axes.
+    fn loaded_tree() -> Model {
+        let inertia = Inertia::new(
+            1.2,
+            [0.1, 0.05, -0.02],
+            [[0.03, 0.002, 0.0], [0.002, 0.02, 0.001], [0.0, 0.001, 0.04]],
+        );
+        let turned = *nalgebra::Rotation3::from_euler_angles(0.3, -0.4, 0.9).matrix();
+        let rows = |m: Matrix3<f64>| std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]));
+        ModelBuilder::new()
+            .gravity([0.0, 0.0, -9.81])
+            .body(BodySpec::new("base", inertia.clone()))
+            .body(BodySpec::new("arm", inertia.clone()))
+            .body(BodySpec::new("slider", inertia.clone()))
+            .body(BodySpec::new("tool", inertia))
+            .joint(JointSpec::free_flyer("float", "base"))
+            .joint(JointSpec::revolute("hinge", "base", "arm", [0.0, 1.0, 0.0]).at([0.2, 0.0, 0.1]))
+            .joint(
+                JointSpec::prismatic("slide", "arm", "slider", [1.0, 0.0, 0.0]).at([0.3, 0.0, 0.0]),
+            )
+            .joint(JointSpec::fixed("weld", "arm", "tool").placed([0.1, 0.2, 0.0], rows(turned)))
+            .load(LoadSpec::force("push", "tool").at([0.05, -0.1, 0.2]))
+            .load(
+                LoadSpec::wrench("wind", "slider")
+                    .at([0.0, 0.1, 0.0])
+                    .in_world(),
+            )
+            .load(LoadSpec::couple("spin", "base").in_world())
+            .build()
+            .expect("valid model")
+    }
+
+    /// The loads' generalized force Q = Σ J_Pᵀ F + J_ωᵀ M is exactly what the same loads,
+    /// turned by hand into each body's axes and moved to its origin, subtract from τ in
+    /// the Newton–Euler sweep: two ways that share nothing but the body poses.
+    #[test]
+    fn loads_do_the_work_of_the_equivalent_wrenches() {
+        let model = loaded_tree();
+        assert_eq!(model.num_load_inputs(), 12);
+        let offsets: Vec<usize> = model.loads().iter().map(|l| l.input_offset).collect();
+        assert_eq!(offsets, [0, 3, 9]);
+        let mut r = Reference::<f64>::new(&model);
+        let (q, v, a) = state();
+        let loads: Vec<f64> = (0..12).map(|k| (1.7 * k as f64).sin() * 3.0).collect();
+        let mut q_loads = vec![0.0; 8];
+        r.generalized_load_forces(&q, &loads, &mut q_loads)
+            .expect("sizes match");
+        // The same loads as wrenches [F; M_P] in each tree body's frame.
+        let poses = r.body_poses(&q).expect("sizes match").to_vec();
+        let mut wrenches = vec![Wrench::zero(); model.bodies().len()];
+        let three = |k: usize| Vector3::new(loads[k], loads[k + 1], loads[k + 2]);
+        for load in model.loads() {
+            let b = load.body.expect("moving body");
+            let to_body = |given: Vector3<f64>| match load.frame {
+                LoadFrame::Body => load.placement_in_body.rotation * given,
+                LoadFrame::World => poses[b].rotation_in_world.transpose() * given,
+            };
+            let o = load.input_offset;
+            let (force, couple) = match load.kind {
+                LoadType::Force => (to_body(three(o)), Vector3::zeros()),
+                LoadType::Couple => (Vector3::zeros(), to_body(three(o))),
+                LoadType::Wrench => (to_body(three(o)), to_body(three(o + 3))),
+            };
+            wrenches[b].force += force;
+            wrenches[b].moment += load.placement_in_body.translation.cross(&force) + couple;
+        }
+        let (mut with, mut without) = (vec![0.0; 8], vec![0.0; 8]);
+        r.inverse_dynamics(&q, &v, &a, Some(&wrenches), &mut with)
+            .expect("sizes match");
+        r.inverse_dynamics(&q, &v, &a, None, &mut without)
+            .expect("sizes match");
+        for k in 0..8 {
+            let expected = without[k] - q_loads[k];
+            assert!(
+                (with[k] - expected).abs() < 1e-12 * (1.0 + expected.abs()),
+                "τ[{k}]: {} with the wrenches, {expected} by virtual power",
+                with[k]
+            );
+        }
+        // Wrong lengths are errors, not panics.
+        assert!(r
+            .generalized_load_forces(&q, &loads[1..], &mut q_loads)
+            .is_err());
+        assert!(r
+            .generalized_load_forces(&q[1..], &loads, &mut q_loads)
+            .is_err());
+        assert!(r
+            .generalized_load_forces(&q, &loads, &mut q_loads[1..])
+            .is_err());
     }
 
     #[test]

@@ -67,14 +67,23 @@ else
   CRIT_ARGS=(--warm-up-time 1 --measurement-time 3 --sample-size 21)
 fi
 BASELINE=public_pinocchio
-OUTPUTS="inverse_dynamics, mass_matrix, forward_dynamics, joint_placements, forward_kinematics,
-              joint_jacobians, joint_jacobians_world,
-              joint_jacobians_world_time_variation, center_of_mass, center_of_mass_jacobian,
-              centroidal_momentum_matrix"
+# Every output of a URDF robot without frames or constraints (joint_reactions and the
+# single kinematics outputs are built and counted, not timed: Pinocchio has no
+# counterpart call).
+OUTPUTS="inverse_dynamics, mass_matrix, forward_dynamics, gravity, bias, coriolis_matrix,
+              kinetic_energy, joint_reactions, joint_placements, forward_kinematics,
+              joint_velocities, joint_acceleration_biases, joint_jacobians,
+              joint_jacobians_world, joint_jacobians_world_time_variation, center_of_mass,
+              center_of_mass_jacobian, centroidal_momentum_matrix, centroidal_bias,
+              inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse"
 
 : > "$OUT/pinocchio.tsv"
+: > "$OUT/build.tsv"
 : > "$OUT/criterion.log"
 : > "$OUT/load.tsv"
+# v0 symbol mangling keeps the generic arguments in the symbols (for the code sizes); it
+# changes no code.
+export RUSTFLAGS="-C symbol-mangling-version=v0"
 while IFS=$'\t' read -r robot nq nv base urdf; do
   CRATE="$OUT/$robot"
   step "$robot ($nv dof, $base base): writing its crate ($CRATE)"
@@ -124,10 +133,22 @@ dynamics_runtime::mechanism! {
 EOF
   [ -f "$CRATE/Cargo.lock" ] || cp "$ROOT/Cargo.lock" "$CRATE/Cargo.lock"
   step "$robot: building the generated code and its benchmark"
-  START=$(date +%s)
   cargo bench -q --manifest-path "$CRATE/Cargo.toml" --bench public --no-run 2> "$CRATE/cargo.log" ||
     { tail -30 "$CRATE/cargo.log" >&2; fail "$robot's crate does not build (log: $CRATE/cargo.log)"; }
-  echo "    built in $(( $(date +%s) - START )) s" >&2
+  # The robot's own build, dependencies built: the library (the macro's expansion and
+  # rustc on the generated code, in the release profile) and the benchmark that
+  # instantiates its functions in f64. Wall time and peak memory of the largest process.
+  touch "$CRATE/src/lib.rs"
+  /usr/bin/time -f "%e %M" -o "$CRATE/build-cost" \
+    cargo bench -q --manifest-path "$CRATE/Cargo.toml" --bench public --no-run 2>> "$CRATE/cargo.log" ||
+    fail "$robot's crate does not rebuild (log: $CRATE/cargo.log)"
+  read -r SECONDS_BUILD KB_BUILD < "$CRATE/build-cost"
+  printf '%s\t%s\t%s\n' "$robot" "$SECONDS_BUILD" "$KB_BUILD" >> "$OUT/build.tsv"
+  echo "    rebuilt in $SECONDS_BUILD s, peak $((KB_BUILD / 1024)) MB" >&2
+  # The machine code of each generated function, from the benchmark binary's symbols (v0
+  # mangling names the function each kernel copy was instantiated for).
+  BIN="$(find "$CRATE/target/release/deps" -maxdepth 1 -type f -executable -name 'public-*' | head -1)"
+  nm -S --size-sort -C "$BIN" | grep 'public_robot::Robot>::' > "$CRATE/code-size.txt" || true
 
   LOAD="$(cut -d' ' -f1-3 /proc/loadavg)"
   step "$robot: Pinocchio (load average $LOAD)"
@@ -166,7 +187,14 @@ ROWS = [("rnea", ["rnea"], "inverse_dynamics"),
          "joint_jacobians_world_time_variation"),
         ("centerOfMass", ["centerOfMass"], "center_of_mass"),
         ("jacobianCenterOfMass", ["jacobianCenterOfMass"], "center_of_mass_jacobian"),
-        ("ccrba", ["ccrba"], "centroidal_momentum_matrix")]
+        ("ccrba", ["ccrba"], "centroidal_momentum_matrix"),
+        ("computeGeneralizedGravity", ["computeGeneralizedGravity"], "gravity"),
+        ("nonLinearEffects", ["nonLinearEffects"], "bias"),
+        ("computeCoriolisMatrix", ["computeCoriolisMatrix"], "coriolis_matrix"),
+        ("dccrba", ["dccrba"], "centroidal_bias"),
+        ("computeRNEADerivatives", ["computeRNEADerivatives"], "inverse_dynamics_derivatives"),
+        ("computeABADerivatives", ["computeABADerivatives"], "forward_dynamics_derivatives"),
+        ("computeMinverse", ["computeMinverse"], "mass_matrix_inverse")]
 
 robots, pin, pin_states, header = [], {}, {}, ""
 for line in open(os.path.join(out_dir, "robots.tsv")):
@@ -195,6 +223,26 @@ for robot, _, _ in robots:
             estimates = json.load(open(os.path.join(directory, "estimates.json")))
             ours[bench["full_id"]] = estimates["median"]["point_estimate"]
 
+build = {}
+for line in open(os.path.join(out_dir, "build.tsv")):
+    robot, seconds, kb = line.split()
+    build[robot] = (float(seconds), int(kb) / 1024)
+
+def code_kb(robot, function):
+    """kB of machine code of one generated function: its AVX2 + FMA kernels (the copy that
+    runs on this machine; the baseline copy is about as large), or all its symbols when it
+    has none."""
+    path = os.path.join(out_dir, robot, "code-size.txt")
+    sizes = {"avx2": 0, "any": 0}
+    for line in open(path) if os.path.exists(path) else []:
+        fields = line.split(None, 3)
+        if len(fields) == 4 and re.search(rf"Robot>::{function}(<|$)", fields[3]):
+            size = int(fields[1], 16)
+            sizes["any"] += size
+            if "isa::avx2_fma::" in fields[3]:
+                sizes["avx2"] += size
+    return (sizes["avx2"] or sizes["any"]) / 1024
+
 problems, lines = [], []
 for robot, nq, nv in robots:
     if pin_states.get(robot) is None or pin_states.get(robot) != ours_states.get(robot):
@@ -207,8 +255,9 @@ for robot, nq, nv in robots:
             continue
         p, variant = min(times)
         note = " (WORLD)" if variant.endswith("_world") else ""
+        size = code_kb(robot, function)
         lines.append(f"| {robot} ({nv} dof) | {call}{note} | {function.replace('+', ' + ')} "
-                     f"| {o:.1f} | {p:.1f} | {p / o:.1f}× |")
+                     f"| {o:.1f} | {p:.1f} | {p / o:.1f}× | {size:.1f} |")
 if problems:
     print("public.sh: " + "; ".join(problems), file=sys.stderr)
     sys.exit(1)
@@ -219,14 +268,21 @@ text = [f"Machine: {cpu}, {cores} cores. 1-minute load average when each side st
         f"{header}; {gxx}. Generated code: {rustc}, baseline x86-64, criterion median of flat samples.",
         "QUICK RUN (--quick): short measurements, not for figures." if quick == "1" else "",
         "",
-        "| robot | Pinocchio | ours | ours ns | Pinocchio ns | speedup |",
-        "| --- | --- | --- | ---: | ---: | ---: |"] + lines + [
+        "Build of each robot's crate (dependencies prebuilt; the macro's expansion and rustc on the "
+        "generated code, release profile, with the benchmark instantiating every function in f64): "
+        + ", ".join(f"{r} {build[r][0]:.0f} s, peak {build[r][1]:.0f} MB" for r, _, _ in robots
+                    if r in build) + ".",
+        "",
+        "| robot | Pinocchio | ours | ours ns | Pinocchio ns | speedup | code kB |",
+        "| --- | --- | --- | ---: | ---: | ---: | ---: |"] + lines + [
         "",
         "Same outputs on both sides, checked at every state before timing (1e-10 relative): forward_kinematics",
         "gives every body's pose, velocity and classical acceleration (world axes), Pinocchio's the same in",
         "its LOCAL convention (spatial acceleration).",
         "computeJointJacobians and joint_jacobians_world give one 6 × nv matrix (WORLD); the row with",
-        "getJointJacobian gives every joint's own Jacobian (LOCAL_WORLD_ALIGNED), as joint_jacobians does."]
+        "getJointJacobian gives every joint's own Jacobian (LOCAL_WORLD_ALIGNED), as joint_jacobians does.",
+        "code kB: machine code of the generated function's AVX2 + FMA copy (the one that runs here),",
+        "from the benchmark binary's symbols; L1 instruction cache: 32 kB per core on most x86-64."]
 text = "\n".join(line for line in text if line is not None)
 print(text)
 open(os.path.join(out_dir, "comparison.md"), "w").write(text + "\n")

@@ -6,7 +6,8 @@
 //! It reads the states and Pinocchio's outputs from the JSON file named by
 //! `PUBLIC_ROBOT_JSON` (written by `public_robots.py`), checks every timed output against
 //! Pinocchio's at every state (max |Δ| / (1 + max |Pinocchio|) ≤ 1e-10: the same model and
-//! the same numbers, or the benchmark stops), prints the states' fingerprint (matched by
+//! the same numbers, or the benchmark stops; the Coriolis matrix, which is not unique, by
+//! C v), prints the states' fingerprint (matched by
 //! `public.sh` against the timing program's), then times each output as `benches/dynamics.rs`
 //! does: one call per state, the states in turn, `<robot>/<output>/generated`.
 
@@ -170,6 +171,49 @@ fn states(path: &str) -> Vec<State> {
             Robot::centroidal_momentum_matrix(q).as_flattened(),
             &centroidal,
         );
+        let rate = numbers(&s["centroidal_bias"], "dAg v");
+        check("dA_G v", k, &Robot::centroidal_bias(q, v), &rate);
+        let gravity = numbers(&s["gravity_torque"], "gravity");
+        check("gravity", k, &Robot::gravity(q), &gravity);
+        check("bias", k, &Robot::bias(q, v), &numbers(&s["nle"], "nle"));
+        let coriolis = Robot::coriolis_matrix(q, v);
+        let c_v: Vec<f64> = coriolis
+            .iter()
+            .map(|row| row.iter().zip(v).map(|(c, x)| c * x).sum())
+            .collect();
+        check("C v", k, &c_v, &numbers(&s["coriolis_v"], "C v"));
+        let energies = [Robot::kinetic_energy(q, v), Robot::potential_energy(q)];
+        let stored = [&s["kinetic_energy"], &s["potential_energy"]].map(|e| e.as_f64());
+        let stored = stored.map(|e| e.expect("energies"));
+        check("energies", k, &energies, &stored);
+        let (d_tau_dq, d_tau_dv) = Robot::inverse_dynamics_derivatives(q, v, a);
+        check(
+            "dtau/dq",
+            k,
+            d_tau_dq.as_flattened(),
+            &rows(&s["dtau_dq"], "dtau_dq"),
+        );
+        check(
+            "dtau/dv",
+            k,
+            d_tau_dv.as_flattened(),
+            &rows(&s["dtau_dv"], "dtau_dv"),
+        );
+        let (d_ddq_dq, d_ddq_dv) = Robot::forward_dynamics_derivatives(q, v, tau);
+        check(
+            "dddq/dq",
+            k,
+            d_ddq_dq.as_flattened(),
+            &rows(&s["ddq_dq"], "ddq_dq"),
+        );
+        check(
+            "dddq/dv",
+            k,
+            d_ddq_dv.as_flattened(),
+            &rows(&s["ddq_dv"], "ddq_dv"),
+        );
+        let inverse = Robot::mass_matrix_inverse(q);
+        check("M⁻¹", k, inverse.as_flattened(), &rows(&s["minv"], "minv"));
         out.push(state);
     }
     assert!(!out.is_empty(), "{path}: no samples");
@@ -238,6 +282,15 @@ fn public(c: &mut Criterion) {
         "center_of_mass" => |s| Robot::center_of_mass(&s.q),
         "center_of_mass_jacobian" => |s| Robot::center_of_mass_jacobian(&s.q),
         "centroidal_momentum_matrix" => |s| Robot::centroidal_momentum_matrix(&s.q),
+        "gravity" => |s| Robot::gravity(&s.q),
+        "bias" => |s| Robot::bias(&s.q, &s.v),
+        "coriolis_matrix" => |s| Robot::coriolis_matrix(&s.q, &s.v),
+        "centroidal_bias" => |s| Robot::centroidal_bias(&s.q, &s.v),
+        "inverse_dynamics_derivatives" => |s| Robot::inverse_dynamics_derivatives(&s.q, &s.v, &s.a),
+        "forward_dynamics_derivatives" => |s| {
+            Robot::forward_dynamics_derivatives(&s.q, &s.v, &s.tau)
+        },
+        "mass_matrix_inverse" => |s| Robot::mass_matrix_inverse(&s.q),
     );
     group.finish();
 }

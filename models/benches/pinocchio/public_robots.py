@@ -10,9 +10,9 @@ For each robot NAME of ROBOTS it writes, into OUT_DIR:
     legged robots), in the layout of tests/data/pinocchio/*.json that build/timing reads
     (joints in Pinocchio's depth-first order, each with its parent, axis and placement;
     bodies with the inertia Pinocchio merged into each joint), and 20 seeded states with
-    Pinocchio's outputs at them: rnea, crba, aba, nle and gravity (timing checks its own
-    model against them) and the kinematics the generated code is checked against before it
-    is timed (oMi, the joints' velocities and classical accelerations at (q, v, a) in
+    Pinocchio's outputs at them: rnea, crba, aba, nle, gravity, C v and the energies
+    (timing checks its own model against them), the derivatives of rnea and aba and M⁻¹,
+    dA_g v, and the kinematics the generated code is checked against before it is timed (oMi, the joints' velocities and classical accelerations at (q, v, a) in
     LOCAL_WORLD_ALIGNED, data.J, data.dJ, the centre of mass, its Jacobian, A_g).
 
 Nothing of example-robot-data is committed: the package is installed at benchmark time.
@@ -133,6 +133,16 @@ def sample(model, data, q, v, a, tau):
     mass = pin.crba(model, data, q)
     mass = np.triu(mass) + np.triu(mass, 1).T
     out["crba"] = rows(mass)
+    out["coriolis_v"] = vector(pin.computeCoriolisMatrix(model, data, q, v) @ v)
+    out["kinetic_energy"] = float(pin.computeKineticEnergy(model, data, q, v))
+    out["potential_energy"] = float(pin.computePotentialEnergy(model, data, q))
+    d_tau_dq, d_tau_dv, _ = pin.computeRNEADerivatives(model, data, q, v, a)
+    out["dtau_dq"], out["dtau_dv"] = rows(d_tau_dq), rows(d_tau_dv)
+    d_ddq_dq, d_ddq_dv, minv = pin.computeABADerivatives(model, data, q, v, tau)
+    minv = np.triu(minv) + np.triu(minv, 1).T
+    out["ddq_dq"], out["ddq_dv"], out["minv"] = rows(d_ddq_dq), rows(d_ddq_dv), rows(minv)
+    d_ag = pin.dccrba(model, data, q, v)
+    out["centroidal_bias"] = vector(np.asarray(d_ag) @ v)
     pin.computeJointJacobiansTimeVariation(model, data, q, v)
     out["joint_jacobians_world_pinocchio"] = rows(data.J)
     out["joint_jacobians_world_time_variation_pinocchio"] = rows(data.dJ)
