@@ -496,6 +496,8 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
             const NUM_LOAD_INPUTS: usize = #num_load_inputs;
             const FUNCTIONS: &'static [#rt::FunctionCost] = &[#(#functions),*];
 
+            // The runtime `Model` needs the runtime's `std` feature: these two follow it.
+            #rt::__if_std! {
             fn model() -> #rt::Model {
                 match <Self as #rt::Mechanism>::model_with_parameters(Self::NOMINAL_PARAMETERS) {
                     ::core::result::Result::Ok(model) => model,
@@ -512,7 +514,7 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
                 parameters: &[f64],
             ) -> ::core::result::Result<#rt::Model, #rt::ModelErrors> {
                 if parameters.len() != #num_parameters {
-                    return ::core::result::Result::Err(#rt::ModelErrors(::std::vec![
+                    return ::core::result::Result::Err(#rt::ModelErrors(#rt::__private::vec![
                         #rt::ModelError::ParameterCount { expected: #num_parameters, got: parameters.len() }
                     ]));
                 }
@@ -525,6 +527,7 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
                     #(#frames)*
                     #(#loads)*
                     .build()
+            }
             }
         }
     }

@@ -129,10 +129,12 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
     let functions = compiled.functions.iter().map(|f| {
         let fused = passes::fusion::fuse(&f.graph, &f.spec.output);
         let plan = schedule::Plan::new(&f.graph, &f.spec, fused);
-        let function = print::function(&f.graph, &f.spec, &plan);
-        let wrapper = print::nalgebra_wrapper(&f.spec, &nalgebra);
-        quote!(#function #wrapper)
+        print::function(&f.graph, &f.spec, &plan)
     });
+    let wrappers = compiled
+        .functions
+        .iter()
+        .map(|f| print::nalgebra_wrapper(&f.spec, &nalgebra));
     let costs: Vec<declare::Cost> = compiled
         .functions
         .iter()
@@ -153,7 +155,56 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
             #statics
             #(#functions)*
         }
+        // The `*_na` twins take nalgebra types, which the runtime has with `std` only.
+        #runtime::__if_std! {
+            impl #name {
+                #(#wrappers)*
+            }
+        }
     }
+}
+
+/// Replaces each `__if_std! { .. }` of the generated code (an item, or an item of an
+/// `impl`) by its contents, as the runtime built with `std` expands it, so that the printed
+/// code is formatted throughout instead of showing those items as one token run (the
+/// command-line compiler prints this view).
+///
+/// # Errors
+/// If a wrapped token run does not parse as items (never for [`to_tokens`]'s output).
+pub fn expand_if_std(file: &mut syn::File) -> syn::Result<()> {
+    let is_if_std = |mac: &syn::Macro| {
+        mac.path
+            .segments
+            .last()
+            .is_some_and(|s| s.ident == "__if_std")
+    };
+    let mut items = Vec::with_capacity(file.items.len());
+    for item in std::mem::take(&mut file.items) {
+        match item {
+            syn::Item::Macro(m) if is_if_std(&m.mac) => {
+                items.extend(syn::parse2::<syn::File>(m.mac.tokens)?.items);
+            }
+            syn::Item::Impl(mut block) => {
+                let mut inner = Vec::with_capacity(block.items.len());
+                for item in std::mem::take(&mut block.items) {
+                    match item {
+                        syn::ImplItem::Macro(m) if is_if_std(&m.mac) => {
+                            let tokens = m.mac.tokens;
+                            let wrapped: syn::ItemImpl =
+                                syn::parse2(quote::quote!(impl X { #tokens }))?;
+                            inner.extend(wrapped.items);
+                        }
+                        other => inner.push(other),
+                    }
+                }
+                block.items = inner;
+                items.push(syn::Item::Impl(block));
+            }
+            other => items.push(other),
+        }
+    }
+    file.items = items;
+    Ok(())
 }
 
 /// Runs the pipeline on the tokens of a `mechanism!` invocation. On error, returns the
@@ -181,6 +232,7 @@ pub fn expand_mechanism(input: TokenStream) -> TokenStream {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use quote::ToTokens;
 
     /// `isa: baseline;` leaves out the AVX2 + FMA copies and the run-time choice.
     #[test]
@@ -209,12 +261,74 @@ mod tests {
         assert!(!one.contains("kernel :: < T , true >"), "{one}");
     }
 
-    /// The generated code of a declaration, pretty-printed.
+    /// The generated code of a declaration, pretty-printed as a runtime with `std` expands
+    /// it.
     fn generated(tokens: TokenStream) -> String {
         let mechanism: Mechanism = syn::parse2(tokens).expect("parses");
         let compiled = compile(mechanism, Path::new(".")).expect("valid");
-        let file: syn::File = syn::parse2(to_tokens(&compiled)).expect("valid Rust");
+        let mut file: syn::File = syn::parse2(to_tokens(&compiled)).expect("valid Rust");
+        expand_if_std(&mut file).expect("items");
         prettyplease::unparse(&file)
+    }
+
+    /// What needs the runtime's `std` (the runtime `Model`, nalgebra) is inside
+    /// `__if_std!`, and nothing else is: the generated functions and the traits stay in
+    /// every build. `expand_if_std` leaves no `__if_std!` and the same items otherwise.
+    #[test]
+    fn std_items_are_wrapped_and_expand() {
+        let mechanism: Mechanism = syn::parse2(quote! {
+            pub struct Arm;
+            body upper { mass: 1.0, com: [0.2, 0.0, 0.0], shape: point }
+            joint shoulder: revolute(ground -> upper) { axis: z }
+        })
+        .expect("parses");
+        let compiled = compile(mechanism, Path::new(".")).expect("valid");
+        let mut file: syn::File = syn::parse2(to_tokens(&compiled)).expect("valid Rust");
+        let is_if_std = |mac: &syn::Macro| {
+            mac.path
+                .segments
+                .last()
+                .is_some_and(|s| s.ident == "__if_std")
+        };
+        let mut wrapped = Vec::new();
+        for item in &file.items {
+            match item {
+                syn::Item::Macro(m) if is_if_std(&m.mac) => wrapped.push(m.mac.tokens.to_string()),
+                syn::Item::Impl(block) => {
+                    for item in &block.items {
+                        if let syn::ImplItem::Macro(m) = item {
+                            assert!(is_if_std(&m.mac), "{}", m.mac.path.to_token_stream());
+                            wrapped.push(m.mac.tokens.to_string());
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        assert_eq!(wrapped.len(), 2, "{wrapped:?}");
+        assert!(wrapped[0].starts_with("fn model ()"), "{}", wrapped[0]);
+        assert!(wrapped[0].contains("fn model_with_parameters"));
+        assert!(wrapped[1].contains("fn inverse_dynamics_na"));
+        let outside = file.to_token_stream().to_string();
+        for gone in ["std ::", "nalgebra", "Model"] {
+            let without: String = wrapped
+                .iter()
+                .fold(outside.clone(), |s, w| s.replace(w, ""));
+            assert!(
+                !without.contains(gone),
+                "`{gone}` outside __if_std!: {without}"
+            );
+        }
+        expand_if_std(&mut file).expect("items");
+        let text = prettyplease::unparse(&file);
+        assert!(!text.contains("__if_std"), "{text}");
+        for expected in [
+            "fn model()",
+            "fn model_with_parameters(",
+            "pub fn inverse_dynamics_na<",
+        ] {
+            assert!(text.contains(expected), "missing {expected:?} in\n{text}");
+        }
     }
 
     #[test]

@@ -13,7 +13,7 @@
 //! count: the longest chain of dependent operations, in estimated cycles
 //! (`Graph::longest_chain`).
 
-use dynamics_codegen::{compile, to_tokens, Compiled, Mechanism};
+use dynamics_codegen::{compile, expand_if_std, to_tokens, Compiled, Mechanism};
 use std::io::{ErrorKind, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -164,10 +164,11 @@ fn run(options: &Options) -> Result<(), String> {
         let text = if options.ops_only {
             op_table(&compiled)
         } else {
-            let file: syn::File =
+            let mut file: syn::File =
                 syn::parse2(to_tokens(&compiled)).map_err(|e| format!("internal: {e}"))?;
+            expand_if_std(&mut file).map_err(|e| format!("internal: {e}"))?;
             format!(
-                "// {}\n{}\n",
+                "// {}\n{STD_NOTE}\n{}\n",
                 op_table(&compiled).trim_end().replace('\n', "\n// "),
                 prettyplease::unparse(&file)
             )
@@ -185,6 +186,11 @@ fn run(options: &Options) -> Result<(), String> {
         ))
     }
 }
+
+/// The lines under the op counts that say what [`expand_if_std`] did.
+const STD_NOTE: &str = "// As the runtime's default `std` feature compiles it: the macro wraps \
+`Mechanism::model*` and\n// the `*_na` wrappers in `::dynamics_runtime::__if_std! { .. }`, which \
+drops them without `std`.";
 
 /// Writes `text` to stdout: `Ok(false)` when the reader has stopped reading
 /// (`dynamics-codegen f.rs | head`), which ends the output quietly; an error message for any

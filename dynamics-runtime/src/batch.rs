@@ -185,7 +185,7 @@ impl fmt::Display for LengthMismatch {
     }
 }
 
-impl std::error::Error for LengthMismatch {}
+impl core::error::Error for LengthMismatch {}
 
 /// The first input whose length is not `expected`.
 fn check(expected: usize, lengths: &[usize]) -> Result<(), LengthMismatch> {

@@ -21,7 +21,7 @@
 //! PartialOrd` (f32, f64, double-double), not straight-line code.
 
 use crate::scalar::{abs, Real, Scalar};
-use std::fmt;
+use core::fmt;
 
 /// Why a closure or a constrained solve failed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -115,7 +115,7 @@ impl fmt::Display for ClosureError {
     }
 }
 
-impl std::error::Error for ClosureError {}
+impl core::error::Error for ClosureError {}
 
 /// Solves the square system a x = b (by rows, the first `n` rows and columns) in place by
 /// Gaussian elimination with partial pivoting; `Singular` if a pivot is below 1e-13 of the
@@ -144,7 +144,7 @@ fn solve_square<T: Scalar + PartialOrd, const K: usize>(
             }
         }
         // A NaN pivot is singular too.
-        if abs(a[best][j]).partial_cmp(&tiny) != Some(std::cmp::Ordering::Greater) {
+        if abs(a[best][j]).partial_cmp(&tiny) != Some(core::cmp::Ordering::Greater) {
             return Err(ClosureError::Singular);
         }
         a.swap(j, best);
@@ -367,7 +367,7 @@ fn cholesky<T: Scalar + PartialOrd, const K: usize>(
             }
             if i == j {
                 let floor = largest * T::from_f64(1e-13);
-                if sum.partial_cmp(&floor) != Some(std::cmp::Ordering::Greater) {
+                if sum.partial_cmp(&floor) != Some(core::cmp::Ordering::Greater) {
                     return Err(ClosureError::Singular);
                 }
                 l[i][i] = sum.sqrt();

@@ -8,10 +8,11 @@
 //! cosine reduce the angle by a double-double π/2 and sum their Taylor series to ~1e-32.
 //! Not fast (≈10–20× f64): it is a measuring instrument.
 
+use crate::float::Math;
 use crate::scalar::Scalar;
+use core::fmt;
+use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 use num_traits::{One, Zero};
-use std::fmt;
-use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 /// A double-double number hi + lo.
 #[derive(Clone, Copy, PartialEq, PartialOrd, Default)]
@@ -47,7 +48,7 @@ fn quick_two_sum(a: f64, b: f64) -> (f64, f64) {
 #[inline]
 fn two_prod(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
-    (p, a.mul_add(b, -p))
+    (p, <f64 as Math>::mul_add(a, b, -p))
 }
 
 impl DoubleDouble {
@@ -58,7 +59,7 @@ impl DoubleDouble {
 
     /// π/2 to double-double precision.
     pub const HALF_PI: DoubleDouble = DoubleDouble {
-        hi: std::f64::consts::FRAC_PI_2,
+        hi: core::f64::consts::FRAC_PI_2,
         lo: 6.123233995736766e-17,
     };
 
@@ -86,7 +87,7 @@ impl DoubleDouble {
         if !self.hi.is_finite() {
             return (DoubleDouble::new(f64::NAN), DoubleDouble::new(f64::NAN));
         }
-        let k = (self.hi / Self::HALF_PI.hi).round();
+        let k = <f64 as Math>::round(self.hi / Self::HALF_PI.hi);
         let r = self - Self::HALF_PI * DoubleDouble::new(k);
         let r2 = r * r;
         // sin r = Σ (−1)ⁿ r^(2n+1)/(2n+1)!, cos r = Σ (−1)ⁿ r^(2n)/(2n)!; |r| ≤ 0.79, so 17
@@ -211,10 +212,10 @@ impl Scalar for DoubleDouble {
     }
     fn sqrt(self) -> Self {
         if self.hi <= 0.0 {
-            return DoubleDouble::new(self.hi.sqrt());
+            return DoubleDouble::new(<f64 as Math>::sqrt(self.hi));
         }
         // One Newton step from the f64 root doubles its 53 bits.
-        let y = DoubleDouble::new(self.hi.sqrt());
+        let y = DoubleDouble::new(<f64 as Math>::sqrt(self.hi));
         y + (self - y * y) / (y * DoubleDouble::new(2.0))
     }
 }

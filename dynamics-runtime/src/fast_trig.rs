@@ -70,7 +70,9 @@
 //! - Signed zero: `sin_cos(-0.0)` is `(+0.0, 1.0)` (std gives −0.0); every other input
 //!   keeps the sign std gives.
 
-#[cfg(target_arch = "x86_64")]
+// The AVX2 + FMA copy's batch: only with `std`, whose run-time feature detection
+// (`crate::isa`) is what makes running it sound.
+#[cfg(all(target_arch = "x86_64", feature = "std"))]
 pub mod avx2;
 
 /// 2/π, rounded.
@@ -152,7 +154,7 @@ impl Lane for f64 {
     }
     #[inline(always)]
     fn fused_mul_add(self, a: Self, b: Self) -> Self {
-        f64::mul_add(self, a, b)
+        <f64 as crate::float::Math>::mul_add(self, a, b)
     }
     #[inline(always)]
     fn to_bits(self) -> u64 {
@@ -316,8 +318,11 @@ fn sin_cos_impl<V: Lane, const FUSED: bool>(x: V) -> (V, V) {
 
 #[cfg(test)]
 mod tests {
+    // std's prelude, for the build without the `std` feature (lib.rs).
     use super::sin_cos;
     use std::f64::consts::PI;
+    #[allow(unused_imports)]
+    use std::prelude::rust_2021::*;
 
     /// Distance in units in the last place: how many doubles lie between `a` and `b`
     /// (+0 and −0 count as one point).
@@ -460,7 +465,7 @@ mod tests {
             for i in 0..N {
                 assert_eq!(bits((s[i], c[i])), bits(sin_cos(x[i])), "angle {i} of {N}");
             }
-            #[cfg(target_arch = "x86_64")]
+            #[cfg(all(target_arch = "x86_64", feature = "std"))]
             match super::avx2::sin_cos_array(&x) {
                 Some((s, c)) => {
                     for i in 0..N {

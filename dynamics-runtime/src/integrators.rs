@@ -26,7 +26,7 @@
 use crate::dynamics::{Dynamics, Lagrangian};
 pub use crate::scalar::Real;
 use crate::scalar::{abs, Scalar};
-use std::fmt;
+use core::fmt;
 
 /// A mechanism's state: configuration and velocity.
 pub struct State<T: Scalar, M: Dynamics<T>> {
@@ -175,7 +175,7 @@ impl fmt::Display for StepError {
     }
 }
 
-impl std::error::Error for StepError {}
+impl core::error::Error for StepError {}
 
 /// One implicit midpoint step: the end velocity w solves
 /// F(w) = w − v − dt · a(q ⊕ v̄ dt/2, v̄) = 0 with v̄ = (v + w)/2, by Newton's method with a
@@ -464,7 +464,7 @@ fn solve_in_place<T: Real, R: AsMut<[T]> + AsRef<[T]>>(a: &mut [R], b: &mut [T])
     for col in 0..n {
         let pivot = (col..n).max_by(|&i, &j| {
             let (x, y) = (abs(a[i].as_ref()[col]), abs(a[j].as_ref()[col]));
-            x.partial_cmp(&y).unwrap_or(std::cmp::Ordering::Equal)
+            x.partial_cmp(&y).unwrap_or(core::cmp::Ordering::Equal)
         })?;
         let magnitude = abs(a[pivot].as_ref()[col]);
         if magnitude == T::zero() || !magnitude.to_f64().is_finite() {

@@ -19,22 +19,37 @@
 //! first call of [`wide()`] (or of any generated function), which reads the environment and
 //! so allocates once: a real-time program calls [`wide()`] during its start-up, before its
 //! loop (as `models/examples/control_loop.rs` does).
+//!
+//! # Without std
+//!
+//! Built without the `std` feature there is no run-time feature detection (and no
+//! environment to read): every kernel runs its baseline copy, compiled for whatever the
+//! crate targets (with `-C target-feature=+fma` that copy fuses its products too, see
+//! [`crate::Scalar::mul_add`]), [`wide()`] is always false, [`choose`] grants nothing, and
+//! this module has no `unsafe`. The wide copies are never called, so never instantiated.
 
-#![allow(unsafe_code)] // one call of a `#[target_feature]` function; proof at the call
+#![cfg_attr(feature = "std", allow(unsafe_code))] // one call of a `#[target_feature]` function; proof at the call
 
+#[cfg(feature = "std")]
 use std::sync::atomic::{AtomicU8, Ordering};
 
+#[cfg(feature = "std")]
 /// Not decided yet.
 const UNKNOWN: u8 = 0;
+#[cfg(feature = "std")]
 /// The baseline copies run.
 const BASELINE: u8 = 1;
+#[cfg(feature = "std")]
 /// The AVX2 + FMA copies run.
 const WIDE: u8 = 2;
 
+#[cfg(feature = "std")]
 static CHOICE: AtomicU8 = AtomicU8::new(UNKNOWN);
 
 /// Whether the wide (AVX2 + FMA) kernels run in this process: the CPU has both features
 /// and `DYNAMICS_ISA` is not `baseline`. Decided at the first call and fixed after it.
+/// Always false without the `std` feature.
+#[cfg(feature = "std")]
 #[inline]
 #[must_use]
 pub fn wide() -> bool {
@@ -48,7 +63,9 @@ pub fn wide() -> bool {
 /// Asks for the wide kernels (`true`) or the baseline ones (`false`) from now on in this
 /// process, overriding `DYNAMICS_ISA`: to compare the two in one program, or to pin a
 /// program to bit-identical results on every machine. The wide kernels are granted only
-/// on a CPU with AVX2 and FMA. Returns whether they run now.
+/// on a CPU with AVX2 and FMA (never without the `std` feature). Returns whether they run
+/// now.
+#[cfg(feature = "std")]
 pub fn choose(wide: bool) -> bool {
     let granted = wide && cpu_has_avx2_fma();
     CHOICE.store(if granted { WIDE } else { BASELINE }, Ordering::Relaxed);
@@ -57,6 +74,7 @@ pub fn choose(wide: bool) -> bool {
 
 /// Detects the features and reads `DYNAMICS_ISA`. Threads racing here store the same
 /// answer.
+#[cfg(feature = "std")]
 #[cold]
 #[inline(never)]
 fn decide() -> bool {
@@ -66,13 +84,28 @@ fn decide() -> bool {
     wide
 }
 
-#[cfg(target_arch = "x86_64")]
+#[cfg(all(target_arch = "x86_64", feature = "std"))]
 fn cpu_has_avx2_fma() -> bool {
     std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
 }
 
-#[cfg(not(target_arch = "x86_64"))]
+#[cfg(all(not(target_arch = "x86_64"), feature = "std"))]
 fn cpu_has_avx2_fma() -> bool {
+    false
+}
+
+/// Without std: the baseline copies always run (module documentation).
+#[cfg(not(feature = "std"))]
+#[inline(always)]
+#[must_use]
+pub fn wide() -> bool {
+    false
+}
+
+/// Without std there is nothing to choose: the baseline copies run, and this returns false.
+#[cfg(not(feature = "std"))]
+pub fn choose(wide: bool) -> bool {
+    let _ = wide;
     false
 }
 
@@ -80,7 +113,7 @@ fn cpu_has_avx2_fma() -> bool {
 /// inlined into the caller.
 #[inline(always)]
 pub(crate) fn run<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
-    #[cfg(target_arch = "x86_64")]
+    #[cfg(all(target_arch = "x86_64", feature = "std"))]
     if self::wide() {
         // SAFETY: `avx2_fma` is compiled for AVX2 and FMA, and `self::wide()` returns true
         // only when `CHOICE` holds `WIDE`, which `decide` and `choose`, the only places
@@ -88,6 +121,7 @@ pub(crate) fn run<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R 
         // features on this CPU. `avx2_fma` requires nothing else.
         return unsafe { avx2_fma(wide) };
     }
+    let _ = wide;
     narrow()
 }
 
@@ -103,7 +137,7 @@ pub(crate) fn run_piece<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R)
 ///
 /// # Safety
 /// The CPU must have AVX2 and FMA.
-#[cfg(target_arch = "x86_64")]
+#[cfg(all(target_arch = "x86_64", feature = "std"))]
 #[target_feature(enable = "avx2,fma")]
 unsafe fn avx2_fma<R>(f: impl FnOnce() -> R) -> R {
     f()
@@ -115,7 +149,7 @@ pub(crate) fn out_of_line<R>(f: impl FnOnce() -> R) -> R {
     f()
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "std"))]
 mod tests {
     /// The wide copy runs exactly when the CPU has AVX2 and FMA and `DYNAMICS_ISA` is not
     /// `baseline` (CI's second pass sets it); `choose` then switches both ways, but grants
@@ -135,5 +169,18 @@ mod tests {
         assert_eq!(granted, super::cpu_has_avx2_fma());
         assert_eq!(super::run(|| 1, || 2) == 1, granted);
         super::choose(automatic);
+    }
+}
+
+#[cfg(all(test, not(feature = "std")))]
+mod tests_without_std {
+    /// Without std the baseline copy always runs, and nothing can ask for the other.
+    #[test]
+    fn the_baseline_copy_always_runs() {
+        assert!(!super::wide());
+        assert_eq!(super::run(|| 1, || 2), 2);
+        assert_eq!(super::run_piece(|| 1, || 2), 2);
+        assert!(!super::choose(true));
+        assert!(!super::wide());
     }
 }

@@ -81,7 +81,9 @@ impl Lane for wide::f64x4 {
     #[inline(always)]
     fn fused_mul_add(self, a: Self, b: Self) -> Self {
         let (x, a, b) = (self.to_array(), a.to_array(), b.to_array());
-        wide::f64x4::new(core::array::from_fn(|i| x[i].mul_add(a[i], b[i])))
+        wide::f64x4::new(core::array::from_fn(|i| {
+            <f64 as crate::float::Math>::mul_add(x[i], a[i], b[i])
+        }))
     }
     #[inline(always)]
     fn to_bits(self) -> wide::u64x4 {

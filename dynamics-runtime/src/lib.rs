@@ -15,6 +15,22 @@
 //! | simulation | [`integrators`], [`integrate_configuration`], loop closure ([`closure`]) |
 //! | force analysis | [`ForceAnalysis`], [`IllConditioned`] |
 //! | the generated code's instruction set | [`isa`]: which copy runs, and pinning the baseline one |
+//!
+//! # Without std
+//!
+//! The default feature `std` brings everything above. Without it
+//! (`default-features = false`) the crate is `#![no_std]`, allocates nothing, and keeps what
+//! generated code and a controller on a microcontroller need: [`Scalar`] and [`Real`] for
+//! `f32`, `f64`, [`DoubleDouble`] and the lanes, the [`mechanism!`] macro (every generated
+//! function), the [`Mechanism`], [`Dynamics`], [`Lagrangian`] and [`Energy`] traits,
+//! [`integrators`], [`closure`], [`batch`] (not `par_map*`), [`ForceAnalysis`] and
+//! [`isa`] (baseline copies only). The sines, cosines and square roots that std's float
+//! methods give come from the `libm` crate there. What needs std: the runtime [`Model`] and
+//! [`ModelBuilder`] (and so `Mechanism::model()`), the [`Reference`] algorithms on nalgebra,
+//! the generated `*_na` wrappers, the `rayon` feature, run-time ISA detection, and the
+//! [`language`] documentation.
+
+#![cfg_attr(not(feature = "std"), no_std)]
 
 extern crate self as dynamics_runtime;
 
@@ -23,12 +39,16 @@ pub mod closure;
 mod double_double;
 mod dynamics;
 mod fast_trig;
+mod float;
 pub mod integrators;
 pub mod isa;
 pub mod lanes;
+#[cfg(feature = "std")]
 pub mod language;
 mod mechanism;
+#[cfg(feature = "std")]
 mod model;
+#[cfg(feature = "std")]
 mod reference;
 mod scalar;
 mod statics;
@@ -40,12 +60,15 @@ pub use dynamics::{
 pub use dynamics_macros::mechanism;
 pub use lanes::{F32x8, F64x4, Lanes};
 pub use mechanism::{FunctionCost, JointLimits, Mechanism};
+#[cfg(feature = "std")]
 pub use model::{
     BodySpec, FrameSpec, Inertia, JointKind, JointSpec, JointType, Load, LoadFrame, LoadSpec,
     LoadType, Model, ModelBuilder, ModelError, ModelErrors, Placement, SizeError, GROUND,
 };
 /// The nalgebra version the runtime and the generated `*_na` wrappers use.
+#[cfg(feature = "std")]
 pub use nalgebra;
+#[cfg(feature = "std")]
 pub use reference::{FrameError, Pose, Reference, Wrench};
 pub use scalar::{Real, Scalar};
 pub use statics::{ForceAnalysis, IllConditioned};
@@ -58,7 +81,39 @@ pub mod __private {
     pub mod fast_trig {
         pub use crate::fast_trig::{sin_cos, sin_cos_array, sin_cos_mul_add};
     }
+    /// `vec!` for the generated `Mechanism::model_with_parameters`, which may expand in a
+    /// `#![no_std]` crate that has no `std` path of its own (this crate built with `std`).
+    #[cfg(feature = "std")]
+    pub use std::vec;
 }
+
+/// For generated code (hidden from the docs): expands to its input when this crate is built
+/// with its `std` feature, to nothing without it. The `mechanism!` macro wraps in it what
+/// needs std (`Mechanism::model`, the `*_na` wrappers), so that those items follow *this*
+/// crate's feature; a `#[cfg(feature = "std")]` in generated code would test the user's
+/// crate's features instead.
+#[cfg(feature = "std")]
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __if_std {
+    ($($item:tt)*) => {
+        $($item)*
+    };
+}
+
+/// Without `std`: nothing (see the `std` version).
+#[cfg(not(feature = "std"))]
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __if_std {
+    ($($item:tt)*) => {};
+}
+
+// The crate's unit tests use std (the test harness needs it anyway) in either build: its
+// macros here, its prelude in each test module (`use std::prelude::rust_2021::*`).
+#[cfg(all(test, not(feature = "std")))]
+#[macro_use]
+extern crate std;
 
 /// The README's Rust examples, compiled and run as doc tests (`cargo test --doc`).
 #[cfg(doctest)]

@@ -1,10 +1,15 @@
 //! The trait that every `mechanism!` type implements.
 //!
 //! It carries what is known at compile time (sizes, names, nominal parameter values) and
-//! rebuilds the same mechanism as a runtime [`Model`], so the reference algorithms can run on
+//! rebuilds the same mechanism as a runtime `Model`, so the reference algorithms can run on
 //! exactly the numbers the generated code was expanded from. The generated dynamics functions
 //! themselves are inherent associated functions of the type, with fixed-size array arguments.
+//!
+//! Without the `std` feature the trait keeps its constants and loses `model` and
+//! `model_with_parameters` (the runtime `Model` allocates); the generated implementation
+//! drops them with it (`__if_std!`, in lib.rs).
 
+#[cfg(feature = "std")]
 use crate::model::{Model, ModelErrors};
 
 /// What one generated function costs: its operation counts, as the macro counted them.
@@ -95,13 +100,17 @@ pub trait Mechanism {
     /// The generated functions and their operation counts.
     const FUNCTIONS: &'static [FunctionCost];
 
-    /// The runtime model with the parameters at their nominal values.
+    /// The runtime model with the parameters at their nominal values (with the `std`
+    /// feature).
     ///
     /// # Panics
     /// Never for a mechanism that compiled: the macro checked the same rules at compile time.
+    #[cfg(feature = "std")]
     fn model() -> Model;
 
     /// The runtime model with the given parameter values, validated again (a parameter
-    /// value can make the mechanism ill-posed, e.g. a negative mass).
+    /// value can make the mechanism ill-posed, e.g. a negative mass). With the `std`
+    /// feature.
+    #[cfg(feature = "std")]
     fn model_with_parameters(parameters: &[f64]) -> Result<Model, ModelErrors>;
 }

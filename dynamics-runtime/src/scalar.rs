@@ -6,23 +6,35 @@
 //! numbers (derivatives) and double-double (about 32 digits) can implement it later: the
 //! dynamics never branch on data.
 
-use nalgebra::{ClosedAddAssign, ClosedDivAssign, ClosedMulAssign, ClosedSubAssign};
+use crate::float::Math;
+use core::fmt::Debug;
+use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 use num_traits::{One, Zero};
-use std::ops::Neg;
 
 /// Arithmetic needed by the dynamics, generic over the number representation.
 ///
-/// Implemented for `f32` and `f64`. The nalgebra bounds let the reference algorithms use
-/// `Vector3<T>`, `Matrix3<T>` and `Matrix6<T>` arithmetic without any further trait.
+/// Implemented for `f32` and `f64`. The bounds are those of `nalgebra::Scalar` (`'static`,
+/// `Clone`, `PartialEq`, `Debug`) and of its `ClosedAddAssign`, `ClosedSubAssign`,
+/// `ClosedMulAssign` and `ClosedDivAssign`, written with `core`'s traits so that the trait
+/// exists without std and nalgebra; nalgebra implements its traits for every type with
+/// these bounds, so the reference algorithms (and users) use `Vector3<T>`, `Matrix3<T>` and
+/// `Matrix6<T>` arithmetic on any `T: Scalar` without any further bound.
 pub trait Scalar:
-    nalgebra::Scalar
+    'static
+    + Clone
+    + PartialEq
+    + Debug
     + Copy
     + Zero
     + One
-    + ClosedAddAssign
-    + ClosedSubAssign
-    + ClosedMulAssign
-    + ClosedDivAssign
+    + Add<Output = Self>
+    + AddAssign
+    + Sub<Output = Self>
+    + SubAssign
+    + Mul<Output = Self>
+    + MulAssign
+    + Div<Output = Self>
+    + DivAssign
     + Neg<Output = Self>
     + Send
     + Sync
@@ -146,24 +158,24 @@ macro_rules! impl_float_scalar {
             }
             #[inline(always)]
             fn sin(self) -> Self {
-                <$t>::sin(self)
+                <$t as Math>::sin(self)
             }
             #[inline(always)]
             fn cos(self) -> Self {
-                <$t>::cos(self)
+                <$t as Math>::cos(self)
             }
             #[inline(always)]
             fn sqrt(self) -> Self {
-                <$t>::sqrt(self)
+                <$t as Math>::sqrt(self)
             }
             #[inline(always)]
             fn sin_cos(self) -> (Self, Self) {
-                <$t>::sin_cos(self)
+                <$t as Math>::sin_cos(self)
             }
             #[inline(always)]
             fn mul_add(self, a: Self, b: Self) -> Self {
                 if cfg!(target_feature = "fma") {
-                    <$t>::mul_add(self, a, b)
+                    <$t as Math>::mul_add(self, a, b)
                 } else {
                     self * a + b
                 }
@@ -171,7 +183,7 @@ macro_rules! impl_float_scalar {
             #[inline(always)]
             fn mul_add_for<const WIDE: bool>(self, a: Self, b: Self) -> Self {
                 if WIDE {
-                    <$t>::mul_add(self, a, b)
+                    <$t as Math>::mul_add(self, a, b)
                 } else {
                     Scalar::mul_add(self, a, b)
                 }
@@ -197,7 +209,7 @@ impl_float_scalar!(f64, {
     }
     #[inline(always)]
     fn sin_cos_array_for<const WIDE: bool, const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
-        #[cfg(target_arch = "x86_64")]
+        #[cfg(all(target_arch = "x86_64", feature = "std"))]
         if WIDE {
             if let Some(wide) = crate::fast_trig::avx2::sin_cos_array(&x) {
                 return wide;

@@ -8,7 +8,7 @@
 //! value) into an error instead of silently returning huge or NaN forces.
 
 use crate::scalar::{abs, Scalar};
-use std::fmt;
+use core::fmt;
 
 /// The unknowns of a force analysis and the pivots of its QR factorization.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,7 +46,7 @@ impl<T: fmt::Display> fmt::Display for IllConditioned<T> {
     }
 }
 
-impl<T: fmt::Debug + fmt::Display> std::error::Error for IllConditioned<T> {}
+impl<T: fmt::Debug + fmt::Display> core::error::Error for IllConditioned<T> {}
 
 impl<T: Scalar + PartialOrd, const N: usize> ForceAnalysis<T, N> {
     /// min |R_jj| / max |R_jj| ≥ 1/κ₂(A); NaN if any pivot or unknown is not finite.
@@ -96,7 +96,10 @@ impl<T: Scalar + PartialOrd, const N: usize> ForceAnalysis<T, N> {
 
 #[cfg(test)]
 mod tests {
+    // std's prelude, for the build without the `std` feature (lib.rs).
     use super::*;
+    #[allow(unused_imports)]
+    use std::prelude::rust_2021::*;
 
     #[test]
     fn ratio_and_checks() {

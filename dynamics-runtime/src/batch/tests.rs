@@ -2,8 +2,11 @@
 //! tuple shapes, `f64` and `f32`; the padding of the last pack; the length errors; and,
 //! with the `rayon` feature, the parallel helpers against the sequential ones.
 
+// std's prelude, for the build without the `std` feature (lib.rs).
 use super::{map1, map2, map3, map4, map5, LengthMismatch};
 use crate::{F32x8, F64x4, Scalar};
+#[allow(unused_imports)]
+use std::prelude::rust_2021::*;
 
 /// A function of the generated code's kind, generic over the scalar: batched sines and
 /// cosines, products, a division and a square root; a nested output.

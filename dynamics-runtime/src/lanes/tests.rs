@@ -2,11 +2,14 @@
 //! `F64x4` sines and cosines bit for bit the runtime's `fast_trig::sin_cos` and within 1
 //! ulp of std, `F32x8`'s within 1 ulp of `f32`'s; and the constructors.
 
+// std's prelude, for the build without the `std` feature (lib.rs).
 use super::{F32x8, F64x4, Lanes};
 use crate::fast_trig;
 use crate::Scalar;
 use num_traits::{One, Zero};
 use std::f64::consts::PI;
+#[allow(unused_imports)]
+use std::prelude::rust_2021::*;
 
 /// A reproducible stream of uniform numbers in [0, 1) (xorshift64*).
 fn uniform(mut state: u64) -> impl Iterator<Item = f64> {
