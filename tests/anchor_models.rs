@@ -2,9 +2,8 @@
 //! `models::anchors` (the language) and of `models::urdf_anchors` (the URDF twins),
 //! `<M as Mechanism>::model()` has the same nq, nv and gravity as `tests/data/pinocchio/<name>.json`
 //! and, joint by joint, the same parent, axis and placement, and body by body the same mass,
-//! mass centre and I_G (the file's conventions are the runtime's, see
-//! `shared/anchors/pinocchio/README.md` beside the repository). The `Mechanism` constants agree with the file
-//! too. The textbook's mechanisms (`models::seed`) build with the numbers their docs state.
+//! mass centre and I_G (the file's conventions are the runtime's: the `conventions` block of
+//! each file states them). The `Mechanism` constants agree with the file too. The textbook's mechanisms (`models::seed`) build with the numbers their docs state.
 //!
 //! Tolerance: 1e-12 absolute for both front ends. The language models carry the file's
 //! numbers as literals. The URDF twins carry roll-pitch-yaw angles and recompute R from them
