@@ -244,30 +244,12 @@ fn check_layout(
     Ok(())
 }
 
-/// R(x, y, z, w) v dt, the rotation of the unit quaternion (scalar last) applied to `v`
-/// and scaled: with `std`, the reference's rotation matrix times an nalgebra vector, as
-/// this runtime has always computed it.
-#[cfg(feature = "std")]
-fn rotate_and_scale<T: Scalar>(x: T, y: T, z: T, w: T, v: [T; 3], dt: T) -> [T; 3] {
-    let r = crate::reference::quaternion_rotation(x, y, z, w);
-    (r * nalgebra::Vector3::new(v[0], v[1], v[2]) * dt).into()
-}
-
-/// Without std (no nalgebra): [`rotate_and_scale_by_hand`].
-#[cfg(not(feature = "std"))]
-fn rotate_and_scale<T: Scalar>(x: T, y: T, z: T, w: T, v: [T; 3], dt: T) -> [T; 3] {
-    rotate_and_scale_by_hand(x, y, z, w, v, dt)
-}
-
-/// R(x, y, z, w) v dt without nalgebra: the entries of R computed as the reference's
-/// `quaternion_rotation` computes them, each row's sum in the order of nalgebra's
-/// matrix-vector product (column 0 first), then scaled by `dt`. For `f64` bit for bit the
-/// `std` version on the states tested (`by_hand_matches_nalgebra`).
-#[cfg(any(test, not(feature = "std")))]
-fn rotate_and_scale_by_hand<T: Scalar>(x: T, y: T, z: T, w: T, v: [T; 3], dt: T) -> [T; 3] {
+/// The rotation body → parent of a unit quaternion (x, y, z, w), scalar last, as rows. The
+/// one formula of the runtime: the reference's `quaternion_rotation` is this matrix.
+pub(crate) fn quaternion_rotation_rows<T: Scalar>(x: T, y: T, z: T, w: T) -> [[T; 3]; 3] {
     let one = T::one();
     let two = one + one;
-    let r = [
+    [
         [
             one - two * (y * y + z * z),
             two * (x * y - z * w),
@@ -283,7 +265,14 @@ fn rotate_and_scale_by_hand<T: Scalar>(x: T, y: T, z: T, w: T, v: [T; 3], dt: T)
             two * (y * z + x * w),
             one - two * (x * x + y * y),
         ],
-    ];
+    ]
+}
+
+/// R(x, y, z, w) v dt: each row's sum in the order of nalgebra's matrix-vector product
+/// (column 0 first), then scaled by `dt`, with or without std; for `f64` bit for bit the
+/// nalgebra product this runtime computed before it had a no_std build (`matches_nalgebra`).
+fn rotate_and_scale<T: Scalar>(x: T, y: T, z: T, w: T, v: [T; 3], dt: T) -> [T; 3] {
+    let r = quaternion_rotation_rows(x, y, z, w);
     core::array::from_fn(|i| (r[i][0] * v[0] + r[i][1] * v[1] + r[i][2] * v[2]) * dt)
 }
 
@@ -316,12 +305,12 @@ fn free_joint_step<T: Scalar>(q: &[T], v: &[T], dt: T, out: &mut [T]) {
 mod tests {
     use super::*;
 
-    /// The no-std rotation of a free joint's displacement against the `std` one (the
-    /// reference's matrix times an nalgebra vector), bit for bit in f64 on 10 000 random
-    /// unit quaternions, velocities and steps.
+    /// The rotation of a free joint's displacement against the same matrix times an nalgebra
+    /// vector (how the runtime computed it before its no_std build), bit for bit in f64 on
+    /// 10 000 random unit quaternions, velocities and steps.
     #[cfg(feature = "std")]
     #[test]
-    fn by_hand_matches_nalgebra() {
+    fn matches_nalgebra() {
         let mut state = 0x2545_f491_4f6c_dd1d_u64;
         let mut next = move || {
             state ^= state << 13;
@@ -335,8 +324,11 @@ mod tests {
             let [x, y, z, w] = quat.map(|c| c / norm);
             let v = [next() * 3.0, next(), next() * 0.1];
             let dt = next().abs() * 0.01;
-            let by_hand = rotate_and_scale_by_hand(x, y, z, w, v, dt);
-            let with_nalgebra = rotate_and_scale(x, y, z, w, v, dt);
+            let by_hand = rotate_and_scale(x, y, z, w, v, dt);
+            let rows = quaternion_rotation_rows(x, y, z, w);
+            let r = nalgebra::Matrix3::from_fn(|i, j| rows[i][j]);
+            let with_nalgebra: [f64; 3] =
+                (r * nalgebra::Vector3::new(v[0], v[1], v[2]) * dt).into();
             assert_eq!(
                 by_hand.map(f64::to_bits),
                 with_nalgebra.map(f64::to_bits),

@@ -38,19 +38,8 @@ fn axis_angle<T: Scalar>(axis: &Vector3<T>, angle: T) -> Matrix3<T> {
 
 /// Rotation body → parent of a unit quaternion (x, y, z, w), scalar last.
 pub(crate) fn quaternion_rotation<T: Scalar>(x: T, y: T, z: T, w: T) -> Matrix3<T> {
-    let one = T::one();
-    let two = one + one;
-    Matrix3::new(
-        one - two * (y * y + z * z),
-        two * (x * y - z * w),
-        two * (x * z + y * w),
-        two * (x * y + z * w),
-        one - two * (x * x + z * z),
-        two * (y * z - x * w),
-        two * (x * z - y * w),
-        two * (y * z + x * w),
-        one - two * (x * x + y * y),
-    )
+    let rows = crate::dynamics::quaternion_rotation_rows(x, y, z, w);
+    Matrix3::from_fn(|r, c| rows[r][c])
 }
 
 /// Pose (rotation body → parent, origin in parent) of a body at configuration q.

@@ -47,7 +47,6 @@ mod frames;
 mod kinematics;
 mod loads;
 pub use frames::FrameError;
-pub(crate) use kinematics::quaternion_rotation;
 mod rnea;
 mod spatial;
 
