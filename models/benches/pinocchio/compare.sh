@@ -231,12 +231,13 @@ printf 'end\t-\t%s\tall\n' "$(cut -d' ' -f1-3 /proc/loadavg)" >> "$HERE/build/lo
 step "joining the results"
 KIN_LIST="$(IFS=,; echo "${KINEMATICS[*]}")"
 CPU="$(LC_ALL=C lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1)"
-"$VENV/bin/python" - "$HERE/build" "$CRITERION" "$BASELINE" "$CPU" "$(nproc)" \
+PYTHONPATH="$HERE" "$VENV/bin/python" - "$HERE/build" "$CRITERION" "$BASELINE" "$CPU" "$(nproc)" \
   "$QUICK" "$(rustc --version), $RUST_BUILD" "$(g++ --version | head -1)" "$KIN_LIST" \
   $MODELS <<'PYTHON' || fail "could not join the two sides' results"
-import json, os, re, sys
+import os, sys
 
 build, criterion, baseline, cpu, cores, quick, rustc, gxx, kinematics, *models = sys.argv[1:]
+import results  # results.py beside this script (PYTHONPATH)
 NAMES = {"pendulum": "Pendulum", "double_pendulum": "DoublePendulum", "planar3": "Planar3",
          "ur5": "Ur5", "panda": "Panda", "quadruped": "Quadruped"}
 KINEMATICS = {m: k for m, k in zip(models, kinematics.split(",")) if k != "-"}
@@ -288,36 +289,15 @@ KIN_ROWS = [("forwardKinematics(q)", "forwardKinematics_q", "joint_placements", 
              True, False),
             ("computeMinverse", "computeMinverse", "mass_matrix_inverse", True, False)]
 
-pin, pin_states, frames, header = {}, {}, {}, ""
-for line in open(os.path.join(build, "pinocchio.tsv")):
-    f = line.rstrip("\n").split("\t")
-    if line.startswith("#"):
-        header = line[1:].strip()
-    elif f[0] == "states":
-        pin_states[f[1]] = f[3]
-    elif f[0] == "frames":
-        frames[f[1]] = int(f[2])
-    elif f[0] == "time":
-        pin[(f[1], f[2])] = float(f[3])
-
-ours_states = {}
-log = open(os.path.join(build, "criterion.log")).read()
-for m in re.finditer(r"^states (\w+) (\d+) ([0-9a-f]{16})", log, re.M):
-    if ours_states.setdefault(m.group(1), m.group(3)) != m.group(3):
-        print(f"compare.sh: {m.group(1)}'s states changed between runs", file=sys.stderr)
-        sys.exit(1)
+pin, pin_states, frames, header = results.pinocchio(os.path.join(build, "pinocchio.tsv"))
+ours_states = results.states(os.path.join(build, "criterion.log"), "compare.sh")
 
 loads = {}
 for line in open(os.path.join(build, "load.tsv")):
     model, side, load, group = line.rstrip("\n").split("\t")
     loads[(model, side, group)] = load.split()[0]
 
-ours = {}
-for directory, _, files in os.walk(criterion):
-    if os.path.basename(directory) == baseline and "estimates.json" in files:
-        bench = json.load(open(os.path.join(directory, "benchmark.json")))
-        estimates = json.load(open(os.path.join(directory, "estimates.json")))
-        ours[bench["full_id"]] = estimates["median"]["point_estimate"]
+ours = results.criterion_medians(criterion, baseline)
 
 problems = []
 for m in models:

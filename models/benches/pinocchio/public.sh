@@ -169,11 +169,12 @@ done < "$OUT/robots.tsv"
 
 step "joining the results"
 CPU="$(LC_ALL=C lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1)"
-"$VENV/bin/python" - "$OUT" "$BASELINE" "$CPU" "$(nproc)" "$QUICK" "$(rustc --version)" \
+PYTHONPATH="$HERE" "$VENV/bin/python" - "$OUT" "$BASELINE" "$CPU" "$(nproc)" "$QUICK" "$(rustc --version)" \
   "$(g++ --version | head -1)" <<'PYTHON' || fail "could not join the two sides' results"
-import json, os, re, sys
+import os, re, sys
 
 out_dir, baseline, cpu, cores, quick, rustc, gxx = sys.argv[1:]
+import results  # results.py beside this script (PYTHONPATH)
 # Pinocchio's call (the faster of its conventions where it has two) beside ours.
 ROWS = [("rnea", ["rnea"], "inverse_dynamics"),
         ("crba", ["crba", "crba_world"], "mass_matrix"),
@@ -196,32 +197,17 @@ ROWS = [("rnea", ["rnea"], "inverse_dynamics"),
         ("computeABADerivatives", ["computeABADerivatives"], "forward_dynamics_derivatives"),
         ("computeMinverse", ["computeMinverse"], "mass_matrix_inverse")]
 
-robots, pin, pin_states, header = [], {}, {}, ""
-for line in open(os.path.join(out_dir, "robots.tsv")):
-    robots.append(line.split("\t")[:3])
-for line in open(os.path.join(out_dir, "pinocchio.tsv")):
-    f = line.rstrip("\n").split("\t")
-    if line.startswith("#"):
-        header = line[1:].strip()
-    elif f[0] == "states":
-        pin_states[f[1]] = f[3]
-    elif f[0] == "time":
-        pin[(f[1], f[2])] = float(f[3])
-log = open(os.path.join(out_dir, "criterion.log")).read()
-ours_states = {m.group(1): m.group(3)
-               for m in re.finditer(r"^states (\w+) (\d+) ([0-9a-f]{16})", log, re.M)}
+robots = [line.split("\t")[:3] for line in open(os.path.join(out_dir, "robots.tsv"))]
+pin, pin_states, _, header = results.pinocchio(os.path.join(out_dir, "pinocchio.tsv"))
+ours_states = results.states(os.path.join(out_dir, "criterion.log"), "public.sh")
 loads = {}
 for line in open(os.path.join(out_dir, "load.tsv")):
     robot, side, load = line.rstrip("\n").split("\t")
     loads[(robot, side)] = load.split()[0]
 ours = {}
 for robot, _, _ in robots:
-    criterion = os.path.join(out_dir, robot, "target", "criterion")
-    for directory, _, files in os.walk(criterion):
-        if os.path.basename(directory) == baseline and "estimates.json" in files:
-            bench = json.load(open(os.path.join(directory, "benchmark.json")))
-            estimates = json.load(open(os.path.join(directory, "estimates.json")))
-            ours[bench["full_id"]] = estimates["median"]["point_estimate"]
+    ours.update(results.criterion_medians(os.path.join(out_dir, robot, "target", "criterion"),
+                                          baseline))
 
 build = {}
 for line in open(os.path.join(out_dir, "build.tsv")):
