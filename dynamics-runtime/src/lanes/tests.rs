@@ -86,129 +86,97 @@ fn operands_f64() -> Vec<f64> {
     x
 }
 
-#[test]
-fn f64x4_arithmetic_is_f64_lane_by_lane() {
-    let x = operands_f64();
-    // Lane k of the i-th vector takes x[i + k] and, as the right operand, x[(7 i + 3 k) mod n].
-    let n = x.len();
-    for i in 0..n {
-        let a: [f64; 4] = std::array::from_fn(|k| x[(i + k) % n]);
-        let b: [f64; 4] = std::array::from_fn(|k| x[(7 * i + 3 * k + 1) % n]);
-        let c: [f64; 4] = std::array::from_fn(|k| x[(5 * i + k + 2) % n]);
-        let (va, vb, vc) = (F64x4::new(a), F64x4::new(b), F64x4::new(c));
-        let cases: [(&str, [f64; 4], [f64; 4]); 7] = [
-            (
-                "+",
-                (va + vb).to_array(),
-                std::array::from_fn(|k| a[k] + b[k]),
-            ),
-            (
-                "-",
-                (va - vb).to_array(),
-                std::array::from_fn(|k| a[k] - b[k]),
-            ),
-            (
-                "*",
-                (va * vb).to_array(),
-                std::array::from_fn(|k| a[k] * b[k]),
-            ),
-            (
-                "/",
-                (va / vb).to_array(),
-                std::array::from_fn(|k| a[k] / b[k]),
-            ),
-            ("neg", (-va).to_array(), std::array::from_fn(|k| -a[k])),
-            (
-                "sqrt",
-                Scalar::sqrt(va).to_array(),
-                std::array::from_fn(|k| Scalar::sqrt(a[k])),
-            ),
-            (
-                "mul_add",
-                Scalar::mul_add(va, vb, vc).to_array(),
-                std::array::from_fn(|k| Scalar::mul_add(a[k], b[k], c[k])),
-            ),
-        ];
-        for (op, got, expected) in cases {
-            for k in 0..4 {
-                assert!(
-                    same_f64(got[k], expected[k]),
-                    "{op} lane {k}: {:e}, {:e}: {:e} against f64 {:e}",
-                    a[k],
-                    b[k],
-                    got[k],
-                    expected[k]
-                );
+/// A lane type's arithmetic against its scalar's, lane by lane and bit for bit, on the
+/// operands: lane k of the i-th vector takes x[i + k] and, as the right operand,
+/// x[(7 i + 3 k + 1) mod n]; then the compound assignments.
+macro_rules! arithmetic_is_scalar_lane_by_lane {
+    ($test:ident, $Lane:ident, $t:ty, $width:literal, $same:ident, $operands:expr) => {
+        #[test]
+        fn $test() {
+            let x: Vec<$t> = $operands;
+            let n = x.len();
+            for i in 0..n {
+                let a: [$t; $width] = std::array::from_fn(|k| x[(i + k) % n]);
+                let b: [$t; $width] = std::array::from_fn(|k| x[(7 * i + 3 * k + 1) % n]);
+                let c: [$t; $width] = std::array::from_fn(|k| x[(5 * i + k + 2) % n]);
+                let (va, vb, vc) = ($Lane::new(a), $Lane::new(b), $Lane::new(c));
+                let cases: [(&str, [$t; $width], [$t; $width]); 7] = [
+                    (
+                        "+",
+                        (va + vb).to_array(),
+                        std::array::from_fn(|k| a[k] + b[k]),
+                    ),
+                    (
+                        "-",
+                        (va - vb).to_array(),
+                        std::array::from_fn(|k| a[k] - b[k]),
+                    ),
+                    (
+                        "*",
+                        (va * vb).to_array(),
+                        std::array::from_fn(|k| a[k] * b[k]),
+                    ),
+                    (
+                        "/",
+                        (va / vb).to_array(),
+                        std::array::from_fn(|k| a[k] / b[k]),
+                    ),
+                    ("neg", (-va).to_array(), std::array::from_fn(|k| -a[k])),
+                    (
+                        "sqrt",
+                        Scalar::sqrt(va).to_array(),
+                        std::array::from_fn(|k| Scalar::sqrt(a[k])),
+                    ),
+                    (
+                        "mul_add",
+                        Scalar::mul_add(va, vb, vc).to_array(),
+                        std::array::from_fn(|k| Scalar::mul_add(a[k], b[k], c[k])),
+                    ),
+                ];
+                for (op, got, expected) in cases {
+                    for k in 0..$width {
+                        assert!(
+                            $same(got[k], expected[k]),
+                            "{op} lane {k}: {:e}, {:e}: {:e} against {} {:e}",
+                            a[k],
+                            b[k],
+                            got[k],
+                            stringify!($t),
+                            expected[k]
+                        );
+                    }
+                }
+                let mut assigned = va;
+                assigned += vb;
+                assigned *= vc;
+                assigned -= va;
+                assigned /= vb;
+                let expected: [$t; $width] =
+                    std::array::from_fn(|k| ((a[k] + b[k]) * c[k] - a[k]) / b[k]);
+                for k in 0..$width {
+                    assert!($same(assigned.to_array()[k], expected[k]));
+                }
             }
         }
-        let mut assigned = va;
-        assigned += vb;
-        assigned *= vc;
-        assigned -= va;
-        assigned /= vb;
-        let expected: [f64; 4] = std::array::from_fn(|k| ((a[k] + b[k]) * c[k] - a[k]) / b[k]);
-        for k in 0..4 {
-            assert!(same_f64(assigned.to_array()[k], expected[k]));
-        }
-    }
+    };
 }
 
-#[test]
-fn f32x8_arithmetic_is_f32_lane_by_lane() {
-    let x: Vec<f32> = operands_f64().into_iter().map(|x| x as f32).collect();
-    let n = x.len();
-    for i in 0..n {
-        let a: [f32; 8] = std::array::from_fn(|k| x[(i + k) % n]);
-        let b: [f32; 8] = std::array::from_fn(|k| x[(7 * i + 3 * k + 1) % n]);
-        let c: [f32; 8] = std::array::from_fn(|k| x[(5 * i + k + 2) % n]);
-        let (va, vb, vc) = (F32x8::new(a), F32x8::new(b), F32x8::new(c));
-        let cases: [(&str, [f32; 8], [f32; 8]); 7] = [
-            (
-                "+",
-                (va + vb).to_array(),
-                std::array::from_fn(|k| a[k] + b[k]),
-            ),
-            (
-                "-",
-                (va - vb).to_array(),
-                std::array::from_fn(|k| a[k] - b[k]),
-            ),
-            (
-                "*",
-                (va * vb).to_array(),
-                std::array::from_fn(|k| a[k] * b[k]),
-            ),
-            (
-                "/",
-                (va / vb).to_array(),
-                std::array::from_fn(|k| a[k] / b[k]),
-            ),
-            ("neg", (-va).to_array(), std::array::from_fn(|k| -a[k])),
-            (
-                "sqrt",
-                Scalar::sqrt(va).to_array(),
-                std::array::from_fn(|k| Scalar::sqrt(a[k])),
-            ),
-            (
-                "mul_add",
-                Scalar::mul_add(va, vb, vc).to_array(),
-                std::array::from_fn(|k| Scalar::mul_add(a[k], b[k], c[k])),
-            ),
-        ];
-        for (op, got, expected) in cases {
-            for k in 0..8 {
-                assert!(
-                    same_f32(got[k], expected[k]),
-                    "{op} lane {k}: {:e}, {:e}: {:e} against f32 {:e}",
-                    a[k],
-                    b[k],
-                    got[k],
-                    expected[k]
-                );
-            }
-        }
-    }
-}
+arithmetic_is_scalar_lane_by_lane!(
+    f64x4_arithmetic_is_f64_lane_by_lane,
+    F64x4,
+    f64,
+    4,
+    same_f64,
+    operands_f64()
+);
+arithmetic_is_scalar_lane_by_lane!(
+    f32x8_arithmetic_is_f32_lane_by_lane,
+    F32x8,
+    f32,
+    8,
+    same_f32,
+    operands_f64().into_iter().map(|x| x as f32).collect()
+);
 
 /// −(+0) is −0 and −(−0) is +0, as for the scalar types (a subtraction from zero would
 /// give +0 for both).
