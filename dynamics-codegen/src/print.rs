@@ -160,7 +160,16 @@ pub(crate) fn function(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> Token
     let count = graph.op_count(&outputs);
     let docs = doc_attrs(&spec.doc, &count);
 
-    let used = |array: Array| plan.pieces.iter().any(|p| p.arrays.contains(&array));
+    let read_by_output = |array: Array| {
+        plan.pieces.len() > 1
+            && plan
+                .output_leaves
+                .iter()
+                .any(|n| matches!(ops[n.index()], Op::Input(r) if r.array == array))
+    };
+    let used = |array: Array| {
+        plan.pieces.iter().any(|p| p.arrays.contains(&array)) || read_by_output(array)
+    };
     let params = spec.args.iter().map(|arg| {
         let ident = if used(arg.array) {
             format_ident!("{}", arg.array.name())
@@ -269,14 +278,63 @@ impl Plan {
         stmts.extend(piece.leaves.iter().map(|&n| let_node(n, ops[n.index()])));
         stmts.extend(piece.steps.iter().map(|s| let_step(s, ops, &self.fused)));
 
-        let result = match self.pieces.get(p + 1) {
-            Some(next) => {
+        let result = if self.pieces.len() == 1 {
+            output.expr()
+        } else {
+            let carry = self.pieces.get(p + 1).map(|next| {
                 let names = next.carry_in.iter().map(|&n| var(n));
                 quote!([#(#names),*])
+            });
+            let outputs = (!piece.outputs.is_empty()).then(|| {
+                let names = piece.outputs.iter().map(|&n| var(n));
+                quote!([#(#names),*])
+            });
+            match (carry, outputs) {
+                (Some(carry), Some(outputs)) => quote!((#carry, #outputs)),
+                (Some(one), None) | (None, Some(one)) => one,
+                (None, None) => quote!(()),
             }
-            None => output.expr(),
         };
         quote!(#(#stmts)* #result)
+    }
+
+    /// What piece `p` of a split function returns (see [`Plan::piece_body`]): the next
+    /// piece's carry and the outputs it computes, each `[T; K]`, as a pair when it has both.
+    fn piece_return_type(&self, p: usize) -> TokenStream {
+        let array = |k: usize| {
+            let k = Literal::usize_unsuffixed(k);
+            quote!([T; #k])
+        };
+        let carry = self
+            .pieces
+            .get(p + 1)
+            .map(|next| array(next.carry_in.len()));
+        let outputs = self.pieces[p].outputs.len();
+        let outputs = (outputs > 0).then(|| array(outputs));
+        match (carry, outputs) {
+            (Some(carry), Some(outputs)) => quote!((#carry, #outputs)),
+            (Some(one), None) | (None, Some(one)) => one,
+            (None, None) => quote!(()),
+        }
+    }
+
+    /// The pattern that binds what piece `p` returns in the emitted function: `carry_{p+1}`
+    /// and the names of the outputs it computes.
+    fn piece_result_pattern(&self, p: usize) -> TokenStream {
+        let carry = self.pieces.get(p + 1).map(|_| {
+            let next = format_ident!("carry_{}", p + 1);
+            quote!(#next)
+        });
+        let outputs = &self.pieces[p].outputs;
+        let outputs = (!outputs.is_empty()).then(|| {
+            let names = outputs.iter().map(|&n| var(n));
+            quote!([#(#names),*])
+        });
+        match (carry, outputs) {
+            (Some(carry), Some(outputs)) => quote!((#carry, #outputs)),
+            (Some(one), None) | (None, Some(one)) => one,
+            (None, None) => quote!(()),
+        }
     }
 
     /// [`Plan::piece_body`] as the baseline copy alone: after `const WIDE: bool = false;`
@@ -313,13 +371,7 @@ impl Plan {
                 params.push(quote!(carry: &[T; #k]));
                 args.push(quote!(&#carry));
             }
-            let ret = match self.pieces.get(p + 1) {
-                Some(next) => {
-                    let k = Literal::usize_unsuffixed(next.carry_in.len());
-                    quote!([T; #k])
-                }
-                None => spec.output.ty(),
-            };
+            let ret = self.piece_return_type(p);
             let doc = format!(" Piece {} of {n}.", p + 1);
             let run = if spec.dispatch {
                 let body = self.piece_body(ops, p, &spec.output);
@@ -349,14 +401,15 @@ impl Plan {
                 });
                 quote!(#part(#(#args),*))
             };
-            if p + 1 < n {
-                let next = format_ident!("carry_{}", p + 1);
-                calls.push(quote!(let #next = #run;));
-            } else {
-                calls.push(run);
-            }
+            let pattern = self.piece_result_pattern(p);
+            calls.push(quote!(let #pattern = #run;));
         }
-        quote!(#(#fns)* #(#calls)*)
+        let leaves = self
+            .output_leaves
+            .iter()
+            .map(|&n| let_node(n, ops[n.index()]));
+        let output = spec.output.expr();
+        quote!(#(#fns)* #(#calls)* #(#leaves)* #output)
     }
 }
 
@@ -891,7 +944,7 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
         let mut s = spec(
             "chain",
             &[(Array::Q, 8), (Array::V, 3)],
-            Output::Vector(outputs),
+            Output::Vector(outputs.clone()),
         );
         s.split_threshold = usize::MAX;
         let whole = pretty(emit_function(&g, &s));
@@ -912,20 +965,48 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
         assert!(!text.contains(&format!("fn part_{}", pieces + 1)));
         assert_eq!(text.matches("T::run_piece(").count(), pieces, "{text}");
         assert!(text.contains("let [v"), "later pieces unpack their carry");
-        assert!(text.contains("let carry_1 = T::run_piece("), "{text}");
+        // Piece 1 computes the output xs[3] and hands it back with its carry; the last piece
+        // computes xs[n - 1]; the leaf outputs (v[1], 2.5) are the emitted function's own.
+        let [last, middle, early, ..] = outputs[..] else {
+            unreachable!()
+        };
+        assert!(
+            text.contains(&format!("let (carry_1, [{early}]) = T::run_piece(")),
+            "{text}"
+        );
+        assert!(
+            text.contains(&format!("let [{last}] = T::run_piece(")),
+            "{text}"
+        );
         assert!(text.contains("|| part_1::<T, true>(q, v),"), "{text}");
         assert!(text.contains("|| part_1::<T, false>(q, v),"), "{text}");
         assert!(text.contains(&format!(
-            "|| part_{pieces}::<T, false>(v, &carry_{}),",
+            "|| part_{pieces}::<T, false>(&carry_{}),",
             pieces - 1
         )));
+        assert!(text.contains("let v1 = v[1];"), "{text}");
+        assert!(
+            text.contains(&format!("[{last}, {middle}, {early}, v1, v")),
+            "{text}"
+        );
+        // An output is handed back once, by the piece that computes it: no carry holds it
+        // (only xs[n / 2] might be read later, by the next element of the chain).
+        let carried = |name: &str| {
+            text.lines()
+                .filter(|l| l.contains("= *carry;") && l.contains(&format!("{name},")))
+                .count()
+        };
+        assert_eq!(carried(&early.to_string()), 0, "{text}");
         syn::parse_str::<syn::File>(&text).expect("pretty text parses again");
 
         s.dispatch = false; // one copy: the pieces as functions of their own, called in turn
         let one = pretty(emit_function(&g, &s));
         assert_eq!(one.matches("#[inline(never)]").count(), pieces, "{one}");
         assert!(one.contains("fn part_1<T: Scalar>("), "{one}");
-        assert!(one.contains("let carry_1 = part_1(q, v);"), "{one}");
+        assert!(
+            one.contains(&format!("let (carry_1, [{early}]) = part_1(q, v);")),
+            "{one}"
+        );
         assert!(!one.contains("run_piece"), "{one}");
 
         s.split_threshold = statements; // exactly at the threshold: not split

@@ -36,12 +36,16 @@
 //! ```
 //!
 //! The values crossing the boundary before piece `k + 1` — computed in piece `k` or
-//! earlier, used in piece `k + 1` or later or as an output — travel in one array
+//! earlier, used by a statement of piece `k + 1` or later — travel in one array
 //! `carry_k: [T; K]`, in id order, passed by reference. A piece returns the values crossing
-//! the next boundary: those it computes and
-//! those it passes through from its own `carry`. Constants and inputs are never carried:
-//! each piece re-reads the inputs and re-creates the constants it uses (both are free).
-//! The last piece returns the function's output.
+//! the next boundary (those it computes and those it passes through from its own `carry`)
+//! and, as a second array, the outputs it computes ([`Piece::outputs`]), which the emitted
+//! function binds to their names: an output is handed back once, by the piece that
+//! computes it, rather than carried through every later piece (which made the emitted
+//! code grow as the number of outputs times the number of pieces). Constants and inputs
+//! are never carried: each piece re-reads the inputs and re-creates the constants it uses
+//! (both are free); the outputs that are leaves are created by the emitted function. It
+//! then returns the output built from those names.
 
 use crate::ir::{Arg, FunctionSpec};
 use crate::passes::fusion::Fused;
@@ -93,6 +97,9 @@ pub(crate) struct Piece {
     pub batch_arrays: BTreeSet<Array>,
     pub arrays: BTreeSet<Array>,
     pub carry_in: Vec<Node>,
+    /// The outputs this piece computes, in id order, handed back to the emitted function
+    /// (split functions only).
+    pub outputs: Vec<Node>,
 }
 
 /// The schedule of the whole function: steps in order, cut into pieces.
@@ -102,6 +109,9 @@ pub(crate) struct Plan {
     /// The sums and differences that take a product in
     /// ([`crate::passes::fusion::fusions`]).
     pub fused: HashMap<Node, Fused>,
+    /// The outputs that are leaves (inputs and constants), in id order: read by the single
+    /// piece of a function that is not split, by the emitted function itself otherwise.
+    pub output_leaves: BTreeSet<Node>,
 }
 
 impl Plan {
@@ -135,7 +145,7 @@ impl Plan {
         }
         let last = pieces.len() - 1;
 
-        // Where each non-leaf node is defined and last used (`pieces.len()` = an output).
+        // Where each non-leaf node is defined and last read by a statement.
         let mut defined_in = HashMap::new();
         let mut last_use: HashMap<Node, usize> = HashMap::new();
         for (p, piece) in pieces.iter_mut().enumerate() {
@@ -168,15 +178,27 @@ impl Plan {
                 }
             }
         }
+        let split = pieces.len() > 1;
+        let mut output_leaves = BTreeSet::new();
         for &out in outputs {
             if ops[out.index()].is_leaf() {
-                pieces[last].leaves.insert(out);
+                output_leaves.insert(out);
+            } else if split {
+                pieces[defined_in[&out]].outputs.push(out);
             } else {
-                last_use.insert(out, pieces.len());
+                last_use.insert(out, last);
             }
         }
-
-        for (p, piece) in pieces.iter_mut().enumerate() {
+        if !split {
+            pieces[last].leaves.extend(output_leaves.iter().copied());
+        }
+        // Each value crosses the boundaries from its piece to its last reader's.
+        for (&node, &l) in &last_use {
+            for piece in &mut pieces[defined_in[&node] + 1..=l] {
+                piece.carry_in.push(node);
+            }
+        }
+        for piece in &mut pieces {
             piece.arrays = piece
                 .leaves
                 .iter()
@@ -186,15 +208,15 @@ impl Plan {
                 })
                 .chain(piece.batch_arrays.iter().copied())
                 .collect();
-            let mut carry: Vec<Node> = last_use
-                .iter()
-                .filter(|&(n, &l)| defined_in[n] < p && p <= l)
-                .map(|(&n, _)| n)
-                .collect();
-            carry.sort_unstable();
-            piece.carry_in = carry;
+            piece.carry_in.sort_unstable();
+            piece.outputs.sort_unstable();
+            piece.outputs.dedup();
         }
-        Plan { pieces, fused }
+        Plan {
+            pieces,
+            fused,
+            output_leaves,
+        }
     }
 }
 
