@@ -691,8 +691,12 @@ fn forward_dynamics_on(
 /// Forward dynamics by whichever method costs fewer operations for this model (a division
 /// weighted as ten operations), with the method named in the docs.
 /// The weight of a function's operations when two expansions are compared: a division or a
-/// square root counts as ten products or sums.
+/// square root counts as ten products or sums; an expansion that ran out of room
+/// ([`crate::sym::NODE_BUDGET`]) costs the most.
 fn weighted_cost(g: &Graph, outputs: &[Node]) -> usize {
+    if g.is_exhausted() {
+        return usize::MAX;
+    }
     let c = g.op_count(outputs);
     c.mul + c.add + 10 * c.div + 10 * c.sqrt
 }
@@ -1240,7 +1244,17 @@ pub(crate) mod tests {
 
     /// The tokens of the PUMA 560's `mechanism!` invocation.
     pub(crate) fn puma_tokens() -> TokenStream {
-        let source = include_str!("../../models/src/puma560.rs");
+        invocation_tokens(include_str!("../../models/src/puma560.rs"))
+    }
+
+    /// The tokens of the bundled quadruped's `mechanism!` invocation (a free base, four
+    /// legs).
+    pub(crate) fn quadruped_tokens() -> TokenStream {
+        invocation_tokens(include_str!("../../models/src/quadruped.rs"))
+    }
+
+    /// The tokens of the first `mechanism!` invocation in `source`.
+    fn invocation_tokens(source: &str) -> TokenStream {
         let file = syn::parse_file(source).expect("parses");
         file.items
             .into_iter()

@@ -105,18 +105,55 @@ pub fn compile(mut mechanism: Mechanism, manifest_dir: &Path) -> syn::Result<Com
         .extend(source.map(|p| p.display().to_string()));
     let scalar: syn::Path = syn::parse_quote!(::dynamics_runtime::Scalar);
     let dispatch = mechanism.isa != Some(syntax::Isa::Baseline);
-    let functions = functions::CATALOG
-        .iter()
-        .filter(|entry| (entry.wanted)(&model))
-        .map(|entry| {
-            let ir::Function { graph, mut spec } = entry.function(&model, &scalar);
-            let (graph, output) = passes::latency::regroup(&graph, &spec.output);
-            spec.output = passes::signs::settle(&graph, &output);
-            spec.dispatch = dispatch;
-            ir::Function { graph, spec }
-        })
-        .collect();
+    let mut functions = Vec::new();
+    let mut too_large: Option<syn::Error> = None;
+    for entry in functions::CATALOG.iter().filter(|e| (e.wanted)(&model)) {
+        let ir::Function { graph, mut spec } = entry.function(&model, &scalar);
+        if graph.is_exhausted() {
+            let error = too_large_error(&mechanism, entry.name);
+            match &mut too_large {
+                Some(first) => first.combine(error),
+                None => too_large = Some(error),
+            }
+            continue;
+        }
+        let (graph, output) = passes::latency::regroup(&graph, &spec.output);
+        spec.output = passes::signs::settle(&graph, &output);
+        spec.dispatch = dispatch;
+        functions.push(ir::Function { graph, spec });
+    }
+    if let Some(error) = too_large {
+        return Err(error);
+    }
     Ok(Compiled { model, functions })
+}
+
+/// The error for a function whose expansion passed [`sym::NODE_BUDGET`] nodes: at the
+/// output name that asked for it, or at the mechanism's name when the outputs are the
+/// default ones.
+fn too_large_error(mechanism: &Mechanism, function: &str) -> syn::Error {
+    let asked_by = |name: &str| {
+        let canonical = model::Outputs::ALIASES
+            .iter()
+            .find(|(alias, _)| *alias == name)
+            .map_or(name, |(_, full)| *full);
+        canonical == function
+            || (function == "potential_energy" && canonical == "kinetic_energy")
+            || (function.starts_with("constraint_") && canonical == "constraint_residual")
+    };
+    let span = mechanism
+        .outputs
+        .iter()
+        .flatten()
+        .find(|name| asked_by(&name.text))
+        .map_or(mechanism.name.span(), |name| name.span);
+    syn::Error::new(
+        span,
+        format!(
+            "`{function}` is too large to generate for this mechanism: its expansion passed              {} nodes, the most one function may take (the time and memory of the              expansion, and rustc's, grow with it). Leave `{function}` out of `outputs: [..]`;              the functions of linear size (`inverse_dynamics`, `forward_dynamics`, `gravity`,              `bias`, the kinematics of single frames) stay within the limit on far larger              mechanisms than the quadratic ones (mass matrix, Coriolis matrix, M⁻¹, Jacobians,              derivatives)",
+            sym::NODE_BUDGET
+        ),
+    )
 }
 
 /// The Rust items of a compiled mechanism: its type, its `Mechanism` implementation and its
@@ -233,6 +270,54 @@ pub fn expand_mechanism(input: TokenStream) -> TokenStream {
 mod tests {
     use super::*;
     use quote::ToTokens;
+
+    /// A function whose expansion passes the node budget is reported as too large (at the
+    /// output name that asked for it), not generated; the other functions of the same
+    /// mechanism stay within it, and `forward_dynamics` falls back to the method that does.
+    #[test]
+    fn a_function_past_the_node_budget_is_an_error_naming_its_output() {
+        let chain = |outputs: TokenStream| {
+            let tokens = functions::tests::chain(12, true, outputs);
+            compile(syn::parse2(tokens).expect("parses"), Path::new("."))
+        };
+        // 32 000 nodes: enough for a 12-link spatial chain's inverse dynamics and its
+        // articulated-body forward dynamics, not for its M⁻¹ or its LDLᵀ forward dynamics.
+        sym::with_node_budget(32_000, || {
+            assert!(chain(quote!([inverse_dynamics])).is_ok());
+            let error = chain(quote!([inverse_dynamics, mass_matrix_inverse]))
+                .err()
+                .expect("M⁻¹ passes the budget");
+            let message = error.to_string();
+            assert!(
+                message.contains("`mass_matrix_inverse` is too large to generate")
+                    && message.contains("Leave `mass_matrix_inverse` out of `outputs: [..]`"),
+                "{message}"
+            );
+            assert_eq!(error.into_iter().count(), 1, "one error, for M⁻¹ alone");
+            assert!(chain(quote!([forward_dynamics_ldlt])).is_err());
+            assert!(
+                chain(quote!([forward_dynamics])).is_ok(),
+                "the ABA, within the budget"
+            );
+        });
+    }
+
+    /// A graph past its budget takes no new operation: it hands back the constant 0 and
+    /// says it is exhausted; leaves are still taken.
+    #[test]
+    fn an_exhausted_graph_refuses_operations() {
+        sym::with_node_budget(3, || {
+            let g = sym::Graph::new();
+            let (x, y) = (g.input(sym::Array::Q, 0), g.input(sym::Array::Q, 1));
+            let sum = g.add(x, y);
+            assert!(!g.is_exhausted());
+            assert_eq!(g.len(), 3);
+            assert_eq!(g.add(x, y), sum, "an existing node is found");
+            assert_eq!(g.mul(x, y), g.zero());
+            assert!(g.is_exhausted());
+            assert_eq!(g.constant_value(g.mul(sum, x)), Some(0.0));
+        });
+    }
 
     /// `isa: baseline;` leaves out the AVX2 + FMA copies and the run-time choice.
     #[test]

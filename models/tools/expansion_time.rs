@@ -111,14 +111,14 @@ fn main() {
                 {
                     stage.push((b - a).as_secs_f64() * 1e3);
                 }
-                name = compiled.model.name.to_string();
-                dof = compiled.model.nv;
+                name = compiled.name();
+                dof = compiled.nv();
                 bytes = text.len();
                 ops = compiled
-                    .functions
+                    .functions()
                     .iter()
                     .map(|f| {
-                        let c = f.graph.op_count(&f.spec.output.nodes());
+                        let c = f.ops;
                         c.mul + c.add + c.div + c.neg + c.sqrt + c.trig
                     })
                     .sum::<usize>();

@@ -195,7 +195,8 @@ pub(crate) struct Backward {
 }
 
 impl Backward {
-    fn new(
+    /// The backward sweep over the bodies' own wrenches `own`.
+    pub(crate) fn new(
         g: &Graph,
         model: &Model,
         transforms: &[JointTransform],
@@ -236,6 +237,11 @@ impl Backward {
         sweep
     }
 
+    /// Each body's own wrench [F; M_P] (loads subtracted), as the sweep was given it.
+    pub(crate) fn own_wrenches(&self) -> &[(Vec3, Vec3)] {
+        &self.own
+    }
+
     /// Recomputes f_i, its carried form and τ_i of the `dirty` bodies (closed under
     /// parents), children first; children are added in decreasing order.
     fn redo(
@@ -246,13 +252,12 @@ impl Backward {
         inputs: &SweepInputs,
         dirty: Vec<bool>,
     ) {
+        let children = children_in_decreasing_order(model);
         for i in (0..self.own.len()).rev().filter(|&i| dirty[i]) {
             let mut total = self.own[i];
-            for c in (i + 1..self.own.len()).rev() {
-                if model.bodies[c].parent == Some(i) {
-                    let (f, m) = self.carried[c];
-                    total = (total.0.add(g, f), total.1.add(g, m));
-                }
+            for &c in &children[i] {
+                let (f, m) = self.carried[c];
+                total = (total.0.add(g, f), total.1.add(g, m));
             }
             self.joint[i] = total;
             self.carried[i] = geometry::wrench_to_parent(g, &transforms[i], total.0, total.1);
@@ -261,10 +266,22 @@ impl Backward {
     }
 }
 
+/// The children of every body, each list in decreasing order (the order in which the
+/// backward sweep adds their wrenches).
+pub(crate) fn children_in_decreasing_order(model: &Model) -> Vec<Vec<usize>> {
+    let mut children = vec![Vec::new(); model.bodies.len()];
+    for (c, body) in model.bodies.iter().enumerate().rev() {
+        if let Some(p) = body.parent {
+            children[p].push(c);
+        }
+    }
+    children
+}
+
 /// τ of one joint from the wrench f it transmits: sᵀ f (the moment for a revolute joint,
 /// the force for a prismatic one, the whole wrench for a free joint), plus armature · q̈ and
 /// damping · q̇.
-fn joint_force(
+pub(crate) fn joint_force(
     g: &Graph,
     joint: &crate::model::Joint,
     (force, moment): (Vec3, Vec3),

@@ -8,7 +8,7 @@
 //! a merged body are re-based the same way.
 
 use super::linear::{self, Matrix3, Vector3};
-use super::resolved::Resolved;
+use super::resolved::{Resolved, ResolvedJoint};
 use super::rules::{self, GROUND};
 use super::value::{self, nominal3, Value, Vec3};
 use super::{
@@ -395,15 +395,6 @@ fn check_coordinates_have_inertia(
 ) {
     let configurations: [fn(usize) -> f64; 3] =
         [|_| 0.0, |i| 0.7 + 0.9 * i as f64, |i| -1.3 + 0.4 * i as f64];
-    let in_subtree = |root: usize, mut k: usize| loop {
-        if k == root {
-            return true;
-        }
-        match bodies[k].parent {
-            Some(parent) if parent >= root => k = parent,
-            _ => return false,
-        }
-    };
     let mut measured: Vec<rules::CoordinateInertia> = bodies
         .iter()
         .map(|_| rules::CoordinateInertia {
@@ -423,36 +414,12 @@ fn check_coordinates_have_inertia(
     }
     for configuration in configurations {
         let world = poses(bodies, p, configuration);
-        for (j, body) in bodies.iter().enumerate() {
-            let (r_j, o_j) = world[j];
-            let mut mass = 0.0;
-            let mut inertia_about_origin = linear::ZERO;
-            for k in (j..bodies.len()).filter(|&k| in_subtree(j, k)) {
-                let (r_k, o_k) = world[k];
-                for part in &bodies[k].parts {
-                    let m = part.mass.nominal(p);
-                    let c = linear::sub_vectors(
-                        &linear::add_vectors(
-                            &o_k,
-                            &linear::mul_vector(&r_k, &nominal3(&part.com_in_body, p)),
-                        ),
-                        &o_j,
-                    );
-                    let i_g =
-                        linear::rotate(&r_k, &rules::nominal_matrix(&part.inertia_com_in_body, p));
-                    mass += m;
-                    // I_G + m (|c|² 1 − c cᵀ), the parallel-axis shift to the joint origin.
-                    let shift = linear::sub(
-                        &linear::scale(&linear::IDENTITY, linear::norm_squared(&c)),
-                        &linear::outer(&c, &c),
-                    );
-                    inertia_about_origin = linear::add(
-                        &inertia_about_origin,
-                        &linear::add(&i_g, &linear::scale(&shift, m)),
-                    );
-                }
-            }
-            let moment = match body.joint.kind {
+        for (j, (mass, inertia_about_origin)) in subtrees_about_origins(bodies, p, &world)
+            .into_iter()
+            .enumerate()
+        {
+            let r_j = world[j].0;
+            let moment = match bodies[j].joint.kind {
                 JointKind::Revolute { axis_in_joint } => {
                     let a = linear::mul_vector(&r_j, &axis_in_joint);
                     linear::dot(&linear::vector_mul(&a, &inertia_about_origin), &a)
@@ -464,14 +431,75 @@ fn check_coordinates_have_inertia(
             measured[j].moment = measured[j].moment.max(moment);
         }
     }
+    let joints: HashMap<&str, &ResolvedJoint> = resolved
+        .joints
+        .iter()
+        .map(|rj| (rj.name.text.as_str(), rj))
+        .collect();
     for (body, measured) in bodies.iter().zip(&mut measured) {
         measured.armature = body.joint.armature.nominal(p);
-        let joint = resolved
-            .joints
-            .iter()
-            .find(|rj| rj.name.text == body.joint.name);
-        if let Some(joint) = joint {
+        if let Some(joint) = joints.get(body.joint.name.as_str()) {
             rules::coordinate_has_inertia(&joint.name, &body.joint.kind, measured, scale, d);
         }
     }
+}
+
+/// Each tree body's subtree (the body and every body below it, with their welded parts)
+/// at the poses `world`: its mass and its inertia about the body's joint origin o_j, in
+/// world axes, Σ R I_G Rᵀ + m (|c − o_j|² 1 − (c − o_j)(c − o_j)ᵀ). Built from the leaves
+/// up, each child's sums shifted from its origin to its parent's: with d = o_child − o_j
+/// and h = Σ m (c − o_child), the first moment gains M d and the inertia
+/// M (|d|² 1 − d dᵀ) + 2 (h·d) 1 − (h dᵀ + d hᵀ); linear in the number of bodies.
+fn subtrees_about_origins(
+    bodies: &[Body],
+    p: &[f64],
+    world: &[(Matrix3, Vector3)],
+) -> Vec<(f64, Matrix3)> {
+    // (mass, first moment about the body's origin, inertia about it), world axes.
+    let mut sums: Vec<(f64, Vector3, Matrix3)> = Vec::with_capacity(bodies.len());
+    for (k, body) in bodies.iter().enumerate() {
+        let r_k = world[k].0;
+        let mut sum = (0.0, [0.0; 3], linear::ZERO);
+        for part in &body.parts {
+            let m = part.mass.nominal(p);
+            // The mass centre relative to the body's origin.
+            let c = linear::mul_vector(&r_k, &nominal3(&part.com_in_body, p));
+            let i_g = linear::rotate(&r_k, &rules::nominal_matrix(&part.inertia_com_in_body, p));
+            sum.0 += m;
+            sum.1 = linear::add_vectors(&sum.1, &linear::scale_vector(&c, m));
+            sum.2 = linear::add(&sum.2, &linear::add(&i_g, &linear::scale(&shift(&c), m)));
+        }
+        sums.push(sum);
+    }
+    for k in (0..bodies.len()).rev() {
+        let Some(parent) = bodies[k].parent else {
+            continue;
+        };
+        let (mass, h, inertia) = sums[k];
+        let d = linear::sub_vectors(&world[k].1, &world[parent].1);
+        let cross_terms = linear::sub(
+            &linear::scale(&linear::IDENTITY, 2.0 * linear::dot(&h, &d)),
+            &linear::add(&linear::outer(&h, &d), &linear::outer(&d, &h)),
+        );
+        let gained = linear::add(
+            &inertia,
+            &linear::add(&linear::scale(&shift(&d), mass), &cross_terms),
+        );
+        let into = &mut sums[parent];
+        into.0 += mass;
+        into.1 = linear::add_vectors(
+            &into.1,
+            &linear::add_vectors(&h, &linear::scale_vector(&d, mass)),
+        );
+        into.2 = linear::add(&into.2, &gained);
+    }
+    sums.into_iter().map(|(m, _, i)| (m, i)).collect()
+}
+
+/// |x|² 1 − x xᵀ: the parallel-axis term of a unit mass at x.
+fn shift(x: &Vector3) -> Matrix3 {
+    linear::sub(
+        &linear::scale(&linear::IDENTITY, linear::norm_squared(x)),
+        &linear::outer(x, x),
+    )
 }

@@ -18,11 +18,12 @@
 //! itself ([`crate::expand`]) always takes the inertias it is given.
 
 use crate::expand::geometry::{
-    inertia_from, is_constant_inertia, vector, BodyInertia, JointTransform,
+    self, inertia_from, is_constant_inertia, vector, BodyInertia, JointTransform,
 };
 use crate::expand::rnea::{self, Backward, SweepInputs};
 use crate::model::{self, JointKind, Model};
 use crate::sym::{Array, Graph, Mat3, Node, Op, Vec3};
+use std::collections::HashSet;
 
 /// The inertias, regrouped so that `build` (which expands one function of the Lagrangian
 /// over the inertias it is given) costs the fewest operations; `inertias` unchanged when no
@@ -156,6 +157,9 @@ pub(crate) fn regroup_sweep(
     inertias: &[BodyInertia],
     sweep: &rnea::Sweep,
 ) -> (Backward, Vec<BodyInertia>) {
+    if model.bodies.len() > EXACT_SWEEP_BODIES {
+        return regroup_sweep_windowed(g, model, transforms, inputs, inertias, sweep);
+    }
     greedy(
         g,
         model,
@@ -170,6 +174,179 @@ pub(crate) fn regroup_sweep(
             backward.with(g, model, transforms, inputs, &changes)
         },
     )
+}
+
+/// The most bodies for which [`regroup_sweep`] judges each candidate by the whole τ: each
+/// candidate redoes its bodies' paths to the root, in time and memory quadratic in the
+/// tree's depth. Above it, [`regroup_sweep_windowed`] judges each candidate on a window of
+/// the tree, in time and memory linear in the number of bodies.
+pub(crate) const EXACT_SWEEP_BODIES: usize = 64;
+
+/// How many ancestors above a candidate's parent the windowed search recomputes: enough
+/// for a change of a body's inertia to show in the wrench its parent carries up (a zero it
+/// makes or fills there).
+const WINDOW_ANCESTORS: usize = 1;
+
+/// [`regroup_sweep`] for large trees: the same greedy walk from the leaves to the root, but
+/// each candidate is judged on a window (the body, its parent and [`WINDOW_ANCESTORS`] more
+/// ancestors) rather than on the whole τ: the window's cost is that of its joints' τ and of
+/// the wrench its top carries up, counted down to what every candidate shares (the forward
+/// sweep, the joint transforms and the wrenches of the bodies already passed). A body's
+/// wrench is final once the walk has passed it (its share decided, its children passed), so
+/// each is built once; the sweep over the chosen inertias is built at the end.
+fn regroup_sweep_windowed(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    inputs: &SweepInputs,
+    inertias: &[BodyInertia],
+    sweep: &rnea::Sweep,
+) -> (Backward, Vec<BodyInertia>) {
+    let n = model.bodies.len();
+    let children = rnea::children_in_decreasing_order(model);
+    // The forward sweep (the bodies' motions and loads; the transforms came before them)
+    // was built before anything of the backward sweep: its nodes are the ones below
+    // `forward_end`. A node that the rules rewrite from one of them (a negated sum, say) is
+    // new, and the count stops at its operands.
+    let forward_end = sweep
+        .motions
+        .iter()
+        .flat_map(|m| {
+            let rows = m.relative_accel.0.iter().chain(&m.omega_products);
+            let vectors = m.omega.0.iter().chain(&m.alpha.0).chain(&m.accel.0);
+            rows.flatten()
+                .chain(vectors)
+                .copied()
+                .collect::<Vec<Node>>()
+        })
+        .chain(
+            sweep
+                .loads
+                .iter()
+                .flat_map(|(f, m)| f.0.into_iter().chain(m.0)),
+        )
+        .map(|node| node.index() + 1)
+        .max()
+        .unwrap_or(0);
+    let mut current = inertias.to_vec();
+    let mut own: Vec<(Vec3, Vec3)> = sweep.backward.own_wrenches().to_vec();
+    // The wrench each passed body carries to its parent (final), or None; and the nodes
+    // they need, which every later window shares.
+    let mut carried: Vec<Option<(Vec3, Vec3)>> = vec![None; n];
+    let mut passed: HashSet<Node> = HashSet::new();
+    let mut tau = vec![g.zero(); model.nv];
+    let mut window_cost = |own_of: &dyn Fn(usize) -> (Vec3, Vec3),
+                           carried: &[Option<(Vec3, Vec3)>],
+                           passed: &HashSet<Node>,
+                           bottom: usize| {
+        let mut outputs = Vec::new();
+        let mut below: Option<(Vec3, Vec3)> = None;
+        let mut body = Some(bottom);
+        for _ in 0..WINDOW_ANCESTORS + 2 {
+            let Some(k) = body else { break };
+            let mut total = own_of(k);
+            for (f, m) in children[k].iter().filter_map(|&c| carried[c]).chain(below) {
+                total = (total.0.add(g, f), total.1.add(g, m));
+            }
+            let joint = &model.bodies[k].joint;
+            rnea::joint_force(g, joint, total, inputs, &mut tau);
+            outputs.extend_from_slice(&tau[joint.idx_v..joint.idx_v + joint.kind.dofs()]);
+            below = Some(geometry::wrench_to_parent(
+                g,
+                &transforms[k],
+                total.0,
+                total.1,
+            ));
+            body = model.bodies[k].parent;
+        }
+        if let Some((f, m)) = below {
+            outputs.extend(f.0.into_iter().chain(m.0));
+        }
+        cost_above(g, &outputs, |node| {
+            node.index() < forward_end || passed.contains(&node)
+        })
+    };
+    for i in (0..n).rev() {
+        let body = &model.bodies[i];
+        let mut best_cost = window_cost(&|k| own[k], &carried, &passed, i);
+        let mut best = None;
+        for share in movable_shares(g, &body.joint, &current[i]) {
+            let parent = body.parent.map(|p| &current[p]);
+            let Some((kept, gained)) = move_share(g, &body.joint, &current[i], parent, &share)
+            else {
+                continue;
+            };
+            let mut changes = vec![(i, sweep.own(g, i, &kept))];
+            if let (Some(p), Some(gained)) = (body.parent, &gained) {
+                changes.push((p, sweep.own(g, p, gained)));
+            }
+            let own_of = |k: usize| {
+                changes
+                    .iter()
+                    .find(|(b, _)| *b == k)
+                    .map_or(own[k], |(_, wrench)| *wrench)
+            };
+            let c = window_cost(&own_of, &carried, &passed, i);
+            if c < best_cost {
+                best_cost = c;
+                best = Some((changes, kept, gained));
+            }
+        }
+        if let Some((changes, kept, gained)) = best {
+            current[i] = kept;
+            if let (Some(p), Some(gained)) = (body.parent, gained) {
+                current[p] = gained;
+            }
+            for (k, wrench) in changes {
+                own[k] = wrench;
+            }
+        }
+        let mut total = own[i];
+        for (f, m) in children[i].iter().filter_map(|&c| carried[c]) {
+            total = (total.0.add(g, f), total.1.add(g, m));
+        }
+        let up = geometry::wrench_to_parent(g, &transforms[i], total.0, total.1);
+        // Everything the carried wrench needs is shared from now on (not only its six
+        // nodes: the rules may rewrite a sum with one of them into one with its operands).
+        let mut stack: Vec<Node> = up.0 .0.into_iter().chain(up.1 .0).collect();
+        while let Some(node) = stack.pop() {
+            if node.index() >= forward_end && passed.insert(node) {
+                stack.extend(g.op(node).children());
+            }
+        }
+        carried[i] = Some(up);
+    }
+    (Backward::new(g, model, transforms, inputs, own), current)
+}
+
+/// (operations, additions) of the nodes `outputs` need, neither counting nor looking below
+/// the nodes for which `shared` holds.
+fn cost_above(g: &Graph, outputs: &[Node], shared: impl Fn(Node) -> bool) -> (usize, usize) {
+    let mut seen: HashSet<Node> = HashSet::new();
+    let mut stack: Vec<Node> = Vec::new();
+    for &node in outputs {
+        if !shared(node) && seen.insert(node) {
+            stack.push(node);
+        }
+    }
+    let (mut ops, mut adds) = (0, 0);
+    while let Some(node) = stack.pop() {
+        let op = g.op(node);
+        match op {
+            Op::Add(..) | Op::Sub(..) => {
+                ops += 1;
+                adds += 1;
+            }
+            Op::Mul(..) => ops += 1,
+            _ => {}
+        }
+        for child in op.children() {
+            if !shared(child) && seen.insert(child) {
+                stack.push(child);
+            }
+        }
+    }
+    (ops, adds)
 }
 
 /// The base inertial parameters that make inverse dynamics (with gravity, q̇ and q̈ as
@@ -316,6 +493,73 @@ mod tests {
     use super::*;
     use crate::expand::{aba, coriolis, crba};
     use crate::functions::{forward_dynamics_by, ForwardMethod};
+
+    /// The windowed search (for large trees) judges each candidate on a window of the tree
+    /// instead of the whole τ: on chains and a branched tree it finds inverse dynamics of
+    /// the same cost as the whole search (measured: equal on these), with the same values.
+    #[test]
+    fn the_windowed_regrouping_matches_the_whole_search() {
+        for (tokens, name) in [
+            (
+                crate::functions::tests::chain(30, true, quote::quote!([inverse_dynamics])),
+                "spatial",
+            ),
+            (
+                crate::functions::tests::chain(30, false, quote::quote!([inverse_dynamics])),
+                "planar",
+            ),
+            (crate::functions::tests::quadruped_tokens(), "quadruped"),
+        ] {
+            let mechanism: crate::syntax::Mechanism = syn::parse2(tokens).expect("parses");
+            let model = crate::model::lower(&mechanism).expect("valid");
+            let (g, t, i) = crate::expand::fresh_graph(&model);
+            let (v, a) = (
+                crate::expand::inputs(&g, Array::V, model.nv),
+                crate::expand::inputs(&g, Array::A, model.nv),
+            );
+            let inputs = SweepInputs {
+                velocity: &v,
+                acceleration: &a,
+                gravity: true,
+                loads: false,
+            };
+            let sweep = rnea::sweep(&g, &model, &t, &i, &inputs);
+            let whole = greedy(
+                &g,
+                &model,
+                &i,
+                sweep.backward.clone(),
+                |backward| arithmetic_cost(&g, &backward.tau),
+                |backward, candidate, changed| {
+                    let changes: Vec<(usize, (Vec3, Vec3))> = changed
+                        .iter()
+                        .map(|&k| (k, sweep.own(&g, k, &candidate[k])))
+                        .collect();
+                    backward.with(&g, &model, &t, &inputs, &changes)
+                },
+            )
+            .0
+            .tau;
+            let windowed = regroup_sweep_windowed(&g, &model, &t, &inputs, &i, &sweep)
+                .0
+                .tau;
+            let declared = arithmetic_cost(&g, &sweep.backward.tau).0;
+            let (w, h) = (
+                arithmetic_cost(&g, &windowed).0,
+                arithmetic_cost(&g, &whole).0,
+            );
+            assert!(w < declared, "{name}: windowed {w}, declared {declared}");
+            assert_eq!(w, h, "{name}: windowed {w}, whole search {h}");
+            let input = |r: crate::sym::InputRef| (f64::from(r.index) * 0.37 + 0.2).sin();
+            let (x, y) = (g.eval(input, &windowed), g.eval(input, &sweep.backward.tau));
+            for (x, y) in x.iter().zip(&y) {
+                assert!(
+                    (x - y).abs() <= 1e-11 * (1.0 + y.abs()),
+                    "{name}: {x} vs {y}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn base_parameters_give_the_same_mass_coriolis_and_accelerations_for_fewer_operations() {

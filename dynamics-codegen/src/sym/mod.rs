@@ -223,26 +223,71 @@ impl fmt::Display for Op {
     }
 }
 
+/// The most nodes one graph holds (every candidate a search tried included): about
+/// 200 MB for the graph, and a function of some millions of operations, which rustc would
+/// take many minutes to compile. Past it the graph is [exhausted](Graph::is_exhausted): a
+/// new operation yields the constant 0 instead of a node (so the expansion runs on to its
+/// end in bounded time and memory, with meaningless results), and the compiler reports the
+/// function as too large instead of generating it.
+pub const NODE_BUDGET: usize = 4_000_000;
+
+thread_local! {
+    /// The budget of the graphs this thread creates: [`NODE_BUDGET`], lowered by tests.
+    static BUDGET: std::cell::Cell<usize> = const { std::cell::Cell::new(NODE_BUDGET) };
+}
+
+/// Runs `f` with graphs of at most `budget` nodes (tests of what an exhausted graph does).
+#[cfg(test)]
+pub(crate) fn with_node_budget<R>(budget: usize, f: impl FnOnce() -> R) -> R {
+    let before = BUDGET.with(|b| b.replace(budget));
+    let result = f();
+    BUDGET.with(|b| b.set(before));
+    result
+}
+
 /// The hash-consed expression DAG; see the [module documentation](self).
 ///
 /// Builders take `&self` (the node list sits in a [`RefCell`]), so expressions nest.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct Graph {
     inner: RefCell<Nodes>,
 }
 
 /// The node list and the hash-consing index.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 struct Nodes {
     ops: Vec<Op>,
     index: HashMap<Op, Node>,
+    /// The most operations (not counting leaves) the graph takes ([`NODE_BUDGET`]).
+    budget: usize,
+    /// Whether an operation was refused for want of budget.
+    exhausted: bool,
+}
+
+impl Default for Graph {
+    fn default() -> Self {
+        Graph {
+            inner: RefCell::new(Nodes {
+                ops: Vec::new(),
+                index: HashMap::new(),
+                budget: BUDGET.with(std::cell::Cell::get),
+                exhausted: false,
+            }),
+        }
+    }
 }
 
 impl Graph {
-    /// An empty graph.
+    /// An empty graph, with room for [`NODE_BUDGET`] nodes.
     #[must_use]
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// Whether the graph ran out of room ([`NODE_BUDGET`]): its nodes then mean nothing.
+    #[must_use]
+    pub fn is_exhausted(&self) -> bool {
+        self.inner.borrow().exhausted
     }
 
     /// The number of nodes (live or not).
@@ -282,6 +327,13 @@ impl Graph {
         let mut nodes = self.inner.borrow_mut();
         if let Some(&node) = nodes.index.get(&op) {
             return node;
+        }
+        // Leaves (constants and inputs) are few and always taken: the constant 0 that stands
+        // for a refused operation is one.
+        if nodes.ops.len() >= nodes.budget && !op.is_leaf() {
+            nodes.exhausted = true;
+            drop(nodes);
+            return self.zero();
         }
         debug_assert!(
             op.children().all(|c| c.index() < nodes.ops.len()),
