@@ -133,6 +133,15 @@
 //! numbers; a free base's columns are its velocity [v_P; ω] in its own frame. NB is the number
 //! of moving bodies (bodies welded by fixed joints count as one), NF the number of frames.
 //!
+//! **Size.** The functions of linear size (inverse dynamics, forward dynamics, gravity, bias,
+//! the energies, the joint reactions and the kinematics of one frame) grow with the number of
+//! joints; the matrices (M, C, M⁻¹, Jacobians of every body) with its square and the
+//! derivatives faster. One function's expansion takes at most 4 million graph nodes: a
+//! function that needs more (say the derivatives of a 200-joint chain) is a compile error at
+//! its name in `outputs:` saying to leave it out, rather than a build that exhausts the
+//! machine. Inverse dynamics of a 1,000-joint chain expands in 1.5 s with the macro compiled optimised (BENCHMARKS.md,
+//! "What large mechanisms cost to expand").
+//!
 //! ```rust
 //! use dynamics_runtime::mechanism;
 //!
