@@ -139,8 +139,8 @@
 //! derivatives faster. One function's expansion takes at most 4 million graph nodes: a
 //! function that needs more (say the derivatives of a 200-joint chain) is a compile error at
 //! its name in `outputs:` saying to leave it out, rather than a build that exhausts the
-//! machine. Inverse dynamics of a 1,000-joint chain expands in 1.5 s with the macro compiled optimised (BENCHMARKS.md,
-//! "What large mechanisms cost to expand").
+//! machine. Inverse dynamics of a 1,000-joint chain expands in 1.5 s with the macro compiled
+//! optimised (BENCHMARKS.md, "What large mechanisms cost to expand").
 //!
 //! ```rust
 //! use dynamics_runtime::mechanism;
