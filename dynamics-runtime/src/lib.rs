@@ -7,7 +7,7 @@
 //!
 //! | what | items |
 //! | --- | --- |
-//! | numbers | [`Scalar`] (`f32`, `f64`, [`DoubleDouble`], the SIMD lanes [`F64x4`] and [`F32x8`]), [`Real`] |
+//! | numbers | [`Scalar`] (`f32`, `f64`, [`DoubleDouble`], the SIMD lanes [`F64x4`] and [`F32x8`], [`Dual`] numbers for forward-mode derivatives of any generated function), [`Real`] |
 //! | many states per call | [`F64x4`], [`F32x8`] ([`Lanes`], contract in [`lanes`]); [`batch`]: a generated function over slices of states, four or eight per call |
 //! | a declared mechanism | the [`mechanism!`] macro (its language: [`language`]); the [`Mechanism`], [`Dynamics`], [`Lagrangian`] and [`Energy`] traits its type implements |
 //! | the mechanism as data | [`Model`], built and validated by [`ModelBuilder`] |
@@ -37,6 +37,7 @@ extern crate self as dynamics_runtime;
 pub mod batch;
 pub mod closure;
 mod double_double;
+mod dual;
 mod dynamics;
 mod fast_trig;
 mod float;
@@ -54,6 +55,7 @@ mod scalar;
 mod statics;
 
 pub use double_double::DoubleDouble;
+pub use dual::Dual;
 pub use dynamics::{
     integrate_configuration, try_integrate_configuration, Dynamics, Energy, Lagrangian, LayoutError,
 };
