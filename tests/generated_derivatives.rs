@@ -335,22 +335,26 @@ fn derivatives_of_a_free_tree_are_the_dual_number_derivatives() {
                     matrix[row][col] = out[row].derivative;
                 }
             }
-            let mut out = [D::constant(0.0); 9];
-            let reference_columns: [(&[D], &[D], bool, &mut [[f64; 9]; 9]); 4] = [
-                (&q_moved, &v_d, true, &mut ref_q),
-                (&q_d, &v_moved, true, &mut ref_v),
-                (&q_moved, &v_d, false, &mut acc_ref_q),
-                (&q_d, &v_moved, false, &mut acc_ref_v),
-            ];
-            for (q_in, v_in, inverse, matrix) in reference_columns {
+            // The reference's τ (inverse) or q̈ (forward) at the moved inputs: its ε parts.
+            let mut reference_column = |q_in: &[D], v_in: &[D], inverse: bool| {
+                let mut out = [D::constant(0.0); 9];
                 if inverse {
                     reference.inverse_dynamics(q_in, v_in, &a_d, None, &mut out)
                 } else {
                     reference.forward_dynamics(q_in, v_in, &tau_d, None, &mut out)
                 }
                 .expect("sizes");
+                out.map(|x| x.derivative)
+            };
+            let columns = [
+                (reference_column(&q_moved, &v_d, true), &mut ref_q),
+                (reference_column(&q_d, &v_moved, true), &mut ref_v),
+                (reference_column(&q_moved, &v_d, false), &mut acc_ref_q),
+                (reference_column(&q_d, &v_moved, false), &mut acc_ref_v),
+            ];
+            for (out, matrix) in columns {
                 for row in 0..9 {
-                    matrix[row][col] = out[row].derivative;
+                    matrix[row][col] = out[row];
                 }
             }
         }
