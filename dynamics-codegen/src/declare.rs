@@ -112,9 +112,15 @@ fn joint_tokens(rt: &TokenStream, j: &DeclaredJoint) -> TokenStream {
     let translation = vec_tokens(&j.translation);
     let rotation = rows_tokens(&j.rotation);
     let (armature, damping) = (value_tokens(&j.armature), value_tokens(&j.damping));
+    // A standard DH row's child frame, Tx(a) Rx(α), when it is not the identity.
+    let child_frame = j.child_frame.as_ref().map(|(translation, rotation)| {
+        let (translation, rotation) = (vec_tokens(translation), rows_tokens(rotation));
+        quote!(.with_child_frame(#translation, #rotation))
+    });
     quote! {
         .joint(#rt::JointSpec::#constructor
             .placed(#translation, #rotation)
+            #child_frame
             .with_armature(#armature)
             .with_damping(#damping))
     }

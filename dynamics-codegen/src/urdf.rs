@@ -196,6 +196,7 @@ pub fn import(
             }),
             at: Some(vector(joint.origin.xyz)),
             rotation: Some(Rotation::Rpy(joint.origin.rpy.map(number), range)),
+            placement: None,
             armature: None,
             damping: if source.damping {
                 coefficient(joint.damping)
@@ -235,6 +236,7 @@ pub fn import(
             axis: None,
             at: None,
             rotation: None,
+            placement: None,
             armature: None,
             damping: None,
             friction: None,

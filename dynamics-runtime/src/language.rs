@@ -396,6 +396,7 @@
 //! | `axis` | revolute and prismatic (required), in the joint frame: `x`, `y`, `z`, `-x`, `-y`, `-z` or `[a, b, c]` (not zero) |
 //! | `at: [x, y, z]` | the joint frame's origin in the parent frame (the origin when absent) |
 //! | `rotation` | the joint frame's orientation in the parent frame ([rotation forms](#rotations); the identity when absent) |
+//! | `placement: dh(a: .., alpha: .., d: .., theta: ..)` or `mdh(..)` | revolute and prismatic: the joint placed by a row of a Denavit–Hartenberg table, instead of `axis`, `at` and `rotation` (see [Denavit–Hartenberg placements](#denavithartenberg-placements)) |
 //! | `armature` | rotor inertia reflected to the coordinate, added to M's diagonal (not negative) |
 //! | `damping` | viscous friction b: the joint force b q̇ enters `bias` and `inverse_dynamics` and opposes the motion in `forward_dynamics` (not negative) |
 //! | `friction` | Coulomb friction (N·m or N; not negative): carried to `JOINT_FRICTION`, in no generated function (as Pinocchio's `model.friction`) |
@@ -457,6 +458,82 @@
 //! assert_eq!(rail, JointLimits { upper: 0.3, ..JointLimits::UNBOUNDED });
 //! assert!(rail.contains_position(-5.0) && !rail.contains_position(0.4));
 //! assert_eq!(Limited::JOINT_FRICTION, [0.2, 0.0]);
+//! ```
+//!
+//! ## Denavit–Hartenberg placements
+//!
+//! A revolute or prismatic joint may be placed by a row of a Denavit–Hartenberg table:
+//! `placement: dh(a: .., alpha: .., d: .., theta: ..)` in the standard (distal) convention,
+//! `placement: mdh(..)` in the modified (proximal) one of Craig's *Introduction to
+//! Robotics*. The entries come in any order, each at most once, 0 when absent; lengths in
+//! metres, angles in radians. The joint moves about (revolute) or along (prismatic) the z
+//! axis of its DH frame: the coordinate q adds to θ (revolute) or to d (prismatic), so θ and
+//! d are the offsets at q = 0. The row replaces `axis`, `at` and `rotation`, which are
+//! errors on the same joint; fixed and free joints take no row. The angles α and θ are
+//! constants; the lengths a and d may be [parameters](#parameters).
+//!
+//! | form | row on joint i | frame i in frame i−1 | the joint's axis |
+//! | --- | --- | --- | --- |
+//! | `mdh(..)` | (a_{i−1}, α_{i−1}, d_i, θ_i) | Rx(α) Tx(a) Rz(θ + q) Tz(d) | z of frame i |
+//! | `dh(..)` | (a_i, α_i, d_i, θ_i) | Rz(θ + q) Tz(d) Tx(a) Rx(α) | z of frame i−1 |
+//!
+//! (For a prismatic joint, θ + q becomes θ and d becomes d + q.) Frame i is the DH frame of
+//! the joint's child body, frame i−1 its parent's (the ground's frame for a joint on the
+//! ground). The child's mass centre, inertia (and shape axes), the loads and frames declared
+//! on it, the constraint points on it and the placements of the joints whose parent it is
+//! are all given in frame i, as DH tables publish them.
+//!
+//! `mdh(..)` is `at: [a, −d sin α, d cos α]`, `rotation: Rx(α) Rz(θ)`, `axis: z`: frame i
+//! is the joint frame after the motion, the child's frame as for any joint.
+//!
+//! With `dh(..)`, the joint frame is Rz(θ) Tz(d) in frame i−1 and the body's frame *in the
+//! generated code* is that frame after the motion, the frame on joint i's axis (Craig's
+//! frame i): `joint_placements` gives it, and so do the reactions and Jacobians given "at
+//! the body origin". The DH link frame i, at the next joint's axis, is that frame times the
+//! constant C = Tx(a) Rx(α): x_body = Rx(α) x_DH + (a, 0, 0). Naming the body in
+//! `frames: [..]` makes the frame outputs give the DH link frame itself (a body's frame
+//! there is the frame its data are declared in), and so does the runtime `Model`'s frame
+//! of the body (its joint carries C as
+//! [`JointSpec::with_child_frame`](crate::JointSpec::with_child_frame)). A table declared
+//! both ways generates the same functions (`tests/dh_placements.rs` checks it on the
+//! PUMA 560, token for token).
+//!
+//! ```rust
+//! use dynamics_runtime::{mechanism, Mechanism};
+//!
+//! mechanism! {
+//!     /// Two links of 0.5 m, the second twisted by α₁ = π/2 (standard DH), point masses
+//!     /// at 0.1 m before the end of each link, along its DH x axis.
+//!     pub struct Standard;
+//!     outputs: [mass_matrix, gravity, joint_placements, frame_placements];
+//!     frames: [upper, lower];
+//!     body upper { mass: 2.0, com: [-0.1, 0.0, 0.0], shape: point }
+//!     body lower { mass: 1.0, com: [-0.1, 0.0, 0.0], shape: point }
+//!     joint shoulder: revolute(ground -> upper) { placement: dh(a: 0.5, alpha: pi / 2, d: 0.3) }
+//!     joint elbow: revolute(upper -> lower) { placement: dh(a: 0.5) }
+//! }
+//! mechanism! {
+//!     /// The same arm in Craig's convention: row i takes a and α from standard row i − 1,
+//!     /// and the mass centres move to Craig's frames: (a_i − 0.1, 0, 0).
+//!     pub struct Modified;
+//!     outputs: [mass_matrix, gravity, joint_placements];
+//!     body upper { mass: 2.0, com: [0.5 - 0.1, 0.0, 0.0], shape: point }
+//!     body lower { mass: 1.0, com: [0.5 - 0.1, 0.0, 0.0], shape: point }
+//!     joint shoulder: revolute(ground -> upper) { placement: mdh(d: 0.3) }
+//!     joint elbow: revolute(upper -> lower) { placement: mdh(a: 0.5, alpha: pi / 2) }
+//! }
+//!
+//! let q = [0.4_f64, -1.1];
+//! assert_eq!(Standard::mass_matrix(&q), Modified::mass_matrix(&q));
+//! assert_eq!(Standard::gravity(&q), Modified::gravity(&q));
+//! // The bodies' poses are Craig's frames; the frames named in `frames: [..]` are the DH
+//! // link frames, 0.5 m further along their x axis (and turned by α about it).
+//! let (r, p) = Standard::joint_placements(&q)[1];
+//! assert_eq!((r, p), Modified::joint_placements(&q)[1]);
+//! let (_, tip) = Standard::frame_placements(&q)[Standard::FRAME_LOWER];
+//! for k in 0..3 {
+//!     assert!((tip[k] - (p[k] + 0.5 * r[k][0])).abs() < 1e-15);
+//! }
 //! ```
 //!
 //! ## Rotations
@@ -547,10 +624,12 @@
 //! another through a fixed joint is a frame too, named after it, so a URDF's end effectors,
 //! flanges and feet need no declaration. The frame outputs cover the welded bodies (in the
 //! tree's depth-first order) then the declared frames; `frames: [a, b];` chooses which, in
-//! that order (a moving body's name is accepted there too: its own frame). `FRAME_NAMES`
-//! lists them and `Type::FRAME_<NAME>` (upper case) is each one's index. A frame's name
-//! differs from every body's and every other frame's. In the Jacobians, a column of a joint
-//! that does not move the frame is a constant zero, and nothing is computed for it.
+//! that order (a moving body's name is accepted there too: its own frame, the one its data
+//! are declared in, which for the child of a `dh(..)` joint is its DH link frame).
+//! `FRAME_NAMES` lists them and `Type::FRAME_<NAME>` (upper case) is each one's index. A
+//! frame's name differs from every body's and every other frame's. In the Jacobians, a
+//! column of a joint that does not move the frame is a constant zero, and nothing is
+//! computed for it.
 //!
 //! ```rust
 //! use dynamics_runtime::{mechanism, Mechanism};

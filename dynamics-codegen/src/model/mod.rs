@@ -9,8 +9,11 @@
 //! Frames and symbols are the textbook's and the runtime's: a body's mass m, mass centre
 //! c = PG and I_G are expressed in the body frame; a joint's placement (R, p) is the pose of
 //! the joint frame in the parent body's frame; the body frame is the joint frame after the
-//! motion.
+//! motion. A standard Denavit–Hartenberg row declares its child's data in another frame, the
+//! DH link frame, a constant placement C away from the body frame ([`dh`]): the tree builder
+//! carries everything declared in it by C, as it carries a welded body's.
 
+mod dh;
 mod diagnostics;
 pub(crate) mod linear;
 mod resolve;
@@ -528,6 +531,9 @@ pub struct DeclaredJoint {
     pub translation: Vec3,
     /// Rotation in the parent frame (rows).
     pub rotation: [[f64; 3]; 3],
+    /// The child's declared frame in the joint frame after the motion, as (translation,
+    /// rotation rows): a standard DH row's Tx(a) Rx(α); `None` when they coincide.
+    pub child_frame: Option<(Vec3, [[f64; 3]; 3])>,
     /// Armature.
     pub armature: Value,
     /// Damping.

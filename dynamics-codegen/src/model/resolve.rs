@@ -4,6 +4,7 @@
 //! Resolution reports what it cannot resolve (undeclared parameters, parameters where only a
 //! constant makes sense, missing fields) and carries every span on, for the rules.
 
+use super::dh;
 use super::linear;
 use super::resolved::{Resolved, ResolvedBody, ResolvedFrame, ResolvedJoint, ResolvedLimits};
 use super::value::{rotate_matrix, Mat3, Value, Vec3};
@@ -105,6 +106,52 @@ impl Resolver<'_> {
                 std::array::from_fn(|j| self.constant(&m.rows[i][j], "a rotation"))
             })),
         }
+    }
+
+    /// A joint's DH row: `at`, `rotation` and `axis` given with it reported, angles
+    /// constants, lengths affine. Returns the placement and the span of the row.
+    fn dh_placement(
+        &mut self,
+        joint: &syntax::Joint,
+        placement: &syntax::DhPlacement,
+    ) -> (dh::Placed, SpanRange) {
+        let given = [
+            ("axis", joint.axis.as_ref().map(|a| a.span)),
+            ("at", joint.at.as_ref().map(|v| v.span)),
+            ("rotation", joint.rotation.as_ref().map(Rotation::span)),
+        ];
+        for (field, span) in given {
+            if let Some(span) = span {
+                rules::report_field_with_dh(field, placement, span, self.diagnostics);
+            }
+        }
+        // Their numbers count as used (one mistake, one error: not also an unused
+        // parameter).
+        let mut numbers: Vec<&Number> = Vec::new();
+        numbers.extend(joint.axis.iter().flat_map(|a| &a.direction.components));
+        numbers.extend(joint.at.iter().flat_map(|v| &v.components));
+        match &joint.rotation {
+            Some(Rotation::Rpy(angles, _)) => numbers.extend(angles),
+            Some(Rotation::AxisAngle(axis, angle, _)) => {
+                numbers.extend(&axis.components);
+                numbers.push(angle);
+            }
+            Some(Rotation::Matrix(m)) => numbers.extend(m.rows.iter().flatten()),
+            None => {}
+        }
+        for number in numbers {
+            self.constant_checked_elsewhere(number);
+        }
+        let what = "a DH angle (`alpha` or `theta`)";
+        let mut length = |n: &Option<Number>| match n {
+            Some(n) => self.value(n),
+            None => Value::constant(0.0),
+        };
+        let (a, d) = (length(&placement.a), length(&placement.d));
+        let mut angle = |n: &Option<Number>| n.as_ref().map_or(0.0, |n| self.constant(n, what));
+        let (alpha, theta) = (angle(&placement.alpha), angle(&placement.theta));
+        let row = dh::Row { a, alpha, d, theta };
+        (dh::place(placement.convention, row, rows), placement.span)
     }
 
     /// I_G from an inertia form; shapes scale with the (affine) mass.
@@ -389,6 +436,26 @@ fn resolve_body(r: &mut Resolver, body: &syntax::Body) -> ResolvedBody {
 
 fn resolve_joint(r: &mut Resolver, joint: &syntax::Joint) -> ResolvedJoint {
     use syntax::JointKind::*;
+    let placed = match (&joint.placement, joint.kind) {
+        (Some(placement), Revolute | Prismatic) => Some(r.dh_placement(joint, placement)),
+        (Some(placement), Fixed | Free) => {
+            rules::report_dh_on_joint_without_axis(joint.kind, placement, r.diagnostics);
+            None
+        }
+        (None, _) => None,
+    };
+    if let Some((placed, span)) = placed {
+        // The DH row fixed the joint frame and its axis (z); `at`, `rotation` and `axis`
+        // were reported if given too.
+        return ResolvedJoint {
+            axis: Some(([0.0, 0.0, 1.0], span)),
+            translation: placed.joint.translation,
+            rotation: placed.joint.rotation,
+            rotation_span: span,
+            child_frame: placed.child,
+            ..resolve_joint_coefficients(r, joint)
+        };
+    }
     let axis = match (&joint.axis, joint.kind) {
         (Some(a), Revolute | Prismatic) => Some((r.axis(a), a.span)),
         (None, Revolute | Prismatic) => {
@@ -416,6 +483,18 @@ fn resolve_joint(r: &mut Resolver, joint: &syntax::Joint) -> ResolvedJoint {
         Some(rot) => (r.rotation(rot), rot.span()),
         None => (IDENTITY, SpanRange::from(joint.name.span)),
     };
+    ResolvedJoint {
+        axis,
+        translation,
+        rotation,
+        rotation_span,
+        ..resolve_joint_coefficients(r, joint)
+    }
+}
+
+/// A joint's names and coefficients, its placement the identity with no axis (for
+/// [`resolve_joint`] to fill in).
+fn resolve_joint_coefficients(r: &mut Resolver, joint: &syntax::Joint) -> ResolvedJoint {
     let mut coefficient = |n: &Option<Number>| match n {
         Some(n) => (r.value(n), n.span),
         None => (Value::constant(0.0), SpanRange::from(joint.name.span)),
@@ -450,10 +529,11 @@ fn resolve_joint(r: &mut Resolver, joint: &syntax::Joint) -> ResolvedJoint {
         kind: joint.kind,
         parent: joint.parent.clone(),
         child: joint.child.clone(),
-        axis,
-        translation,
-        rotation,
-        rotation_span,
+        axis: None,
+        translation: std::array::from_fn(|_| Value::constant(0.0)),
+        rotation: IDENTITY,
+        rotation_span: name_span,
+        child_frame: None,
         armature,
         damping,
         friction,

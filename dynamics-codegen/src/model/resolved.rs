@@ -2,6 +2,7 @@
 //! the rules ([`super::rules`]) and the tree builder ([`super::tree`]). Every value keeps the
 //! span of the tokens it came from.
 
+use super::dh::Pose;
 use super::value::{Mat3, Value, Vec3};
 use super::{Outputs, Parameter};
 use crate::syntax::{self, SpanRange};
@@ -32,6 +33,9 @@ pub(crate) struct ResolvedJoint {
     pub translation: Vec3,
     pub rotation: [[f64; 3]; 3],
     pub rotation_span: SpanRange,
+    /// The child body's declared frame in its model frame (the joint frame after the
+    /// motion): a standard DH row's C = Tx(a) Rx(α); `None` when they are the same frame.
+    pub child_frame: Option<Pose>,
     pub armature: (Value, SpanRange),
     pub damping: (Value, SpanRange),
     /// Coulomb friction (0 when absent), at its number (the joint's name when absent).

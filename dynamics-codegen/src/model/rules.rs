@@ -179,6 +179,49 @@ pub(crate) fn report_missing_field(
     );
 }
 
+/// Rule: a DH placement places a revolute or prismatic joint's axis; fixed and free joints
+/// have none.
+pub(crate) fn report_dh_on_joint_without_axis(
+    kind: JointKind,
+    placement: &syntax::DhPlacement,
+    d: &mut Diagnostics,
+) {
+    let kind = match kind {
+        JointKind::Fixed => "fixed",
+        _ => "free",
+    };
+    d.error(
+        placement.span,
+        format!(
+            "a {kind} joint cannot be placed by `{}(..)`: a Denavit–Hartenberg row places the \
+             axis of a revolute or prismatic joint; place a {kind} joint with `at` and \
+             `rotation`",
+            placement.convention.word()
+        ),
+    );
+}
+
+/// Rule: a DH placement fixes the joint frame and its axis (z), so `at`, `rotation` and
+/// `axis` are not given with it.
+pub(crate) fn report_field_with_dh(
+    field: &str,
+    placement: &syntax::DhPlacement,
+    span: SpanRange,
+    d: &mut Diagnostics,
+) {
+    let form = placement.convention.word();
+    let why = match field {
+        "axis" => {
+            format!("`{form}(..)` fixes the axis: the joint moves about or along z of its DH frame")
+        }
+        _ => format!("`{form}(..)` places the joint frame"),
+    };
+    d.error(
+        span,
+        format!("`{field}` cannot be given with `placement: {form}(..)`: {why}; remove `{field}`"),
+    );
+}
+
 /// Rule: fixed and free joints take no axis.
 pub(crate) fn report_axis_not_allowed(kind: JointKind, span: SpanRange, d: &mut Diagnostics) {
     let kind = match kind {

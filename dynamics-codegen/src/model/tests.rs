@@ -786,3 +786,181 @@ fn inertia_rules_judge_the_merged_body() {
         "{e:?}"
     );
 }
+
+/// The same arm, a revolute, a prismatic (with a θ offset) and a revolute joint, declared
+/// with a standard DH table (the inertial data, a load point, a frame and a welded tool in
+/// the DH link frames) and with the same table in Craig's convention (row i takes a and α
+/// from standard row i − 1; the data carried into Craig's frames by C = Tx(a) Rx(α), which
+/// with quarter-turn twists permutes axes exactly). The trees are the same, number for
+/// number.
+#[test]
+fn standard_and_modified_dh_tables_lower_to_the_same_tree() {
+    let standard = lower_tokens(quote! {
+        pub struct Arm;
+        body l1 { mass: 2.0, com: [-0.05, 0.01, 0.02], inertia: diag([0.01, 0.02, 0.03]) }
+        body l2 { mass: 1.0, com: [0.0, 0.03, -0.1], inertia: diag([0.004, 0.005, 0.006]) }
+        body l3 { mass: 0.5, com: [-0.1, 0.0, 0.0], inertia: diag([0.001, 0.002, 0.002]) }
+        body tool { mass: 0.1, shape: point }
+        joint j1: revolute(ground -> l1) { placement: dh(a: 0.1, alpha: pi / 2, d: 0.3, theta: 0.2) }
+        joint j2: prismatic(l1 -> l2) { placement: dh(alpha: -pi / 2, d: 0.25, theta: -pi / 2) }
+        joint j3: revolute(l2 -> l3) { placement: dh(a: 0.2, d: 0.05) }
+        joint weld: fixed(l3 -> tool) { at: [0.1, 0.0, 0.0] }
+        load push: force on l2 at [0.01, 0.02, 0.03];
+        frame tcp: on l3 at [0.05, 0.0, 0.0];
+    })
+    .expect("valid");
+    let modified = lower_tokens(quote! {
+        pub struct Arm;
+        // Rx(π/2) takes (x, y, z) to (x, −z, y), Rx(−π/2) to (x, z, −y); then + (a, 0, 0).
+        body l1 { mass: 2.0, com: [0.1 - 0.05, -0.02, 0.01], inertia: diag([0.01, 0.03, 0.02]) }
+        body l2 { mass: 1.0, com: [0.0, -0.1, -0.03], inertia: diag([0.004, 0.006, 0.005]) }
+        body l3 { mass: 0.5, com: [0.2 - 0.1, 0.0, 0.0], inertia: diag([0.001, 0.002, 0.002]) }
+        body tool { mass: 0.1, shape: point }
+        joint j1: revolute(ground -> l1) { placement: mdh(a: 0.0, alpha: 0.0, d: 0.3, theta: 0.2) }
+        joint j2: prismatic(l1 -> l2) { placement: mdh(a: 0.1, alpha: pi / 2, d: 0.25, theta: -pi / 2) }
+        joint j3: revolute(l2 -> l3) { placement: mdh(alpha: -pi / 2, d: 0.05) }
+        joint weld: fixed(l3 -> tool) { at: [0.1 + 0.2, 0.0, 0.0] }
+        load push: force on l2 at [0.01, 0.03, -0.02];
+        frame tcp: on l3 at [0.05 + 0.2, 0.0, 0.0];
+    })
+    .expect("valid");
+    assert_eq!(standard.bodies.len(), 3);
+    for (s, m) in standard.bodies.iter().zip(&modified.bodies) {
+        assert_eq!(s.joint.kind, m.joint.kind, "{}", s.name);
+        assert_eq!(
+            s.joint.rotation_in_parent, m.joint.rotation_in_parent,
+            "{}",
+            s.name
+        );
+        assert_eq!(
+            s.joint.translation_in_parent, m.joint.translation_in_parent,
+            "{}",
+            s.name
+        );
+        assert_eq!(s.parts.len(), m.parts.len());
+        for (sp, mp) in s.parts.iter().zip(&m.parts) {
+            assert_eq!(sp.com_in_body, mp.com_in_body, "{}", sp.name);
+            assert_eq!(
+                sp.inertia_com_in_body, mp.inertia_com_in_body,
+                "{}",
+                sp.name
+            );
+        }
+    }
+    assert_eq!(
+        standard.bodies[1].joint.kind,
+        JointKind::Prismatic {
+            axis_in_joint: [0.0, 0.0, 1.0]
+        }
+    );
+    assert_eq!(
+        standard.loads[0].point_in_body,
+        modified.loads[0].point_in_body
+    );
+    // In body axes, the standard declaration's load is in the DH link frame's axes.
+    let rx_minus = [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]];
+    assert_eq!(standard.loads[0].rotation_in_body, rx_minus);
+    assert_eq!(modified.loads[0].rotation_in_body, linear::IDENTITY);
+    let tcp = |m: &Model| {
+        let f = m.frames.iter().find(|f| f.name == "tcp").expect("tcp");
+        (f.body, f.rotation_in_body, f.origin_in_body.clone())
+    };
+    assert_eq!(tcp(&standard), tcp(&modified));
+    // The runtime model gets the child frames of the standard rows (each has a ≠ 0 or
+    // α ≠ 0), none for the weld.
+    let child_frames: Vec<bool> = standard
+        .declared_joints
+        .iter()
+        .map(|j| j.child_frame.is_some())
+        .collect();
+    assert_eq!(child_frames, [true, true, true, false]);
+    assert!(modified
+        .declared_joints
+        .iter()
+        .all(|j| j.child_frame.is_none()));
+}
+
+/// A DH row fixes the joint frame and the axis: `at`, `rotation` and `axis` with it are
+/// errors at their tokens; fixed and free joints take no DH row; the angles are constants,
+/// the lengths may be parameters.
+#[test]
+fn dh_placements_are_checked() {
+    let e = errors(quote! {
+        pub struct P;
+        body b { mass: 1.0, com: [0.1, 0.0, 0.0], shape: point }
+        joint j: revolute(ground -> b) {
+            axis: z, at: [0.0, 0.0, 0.1], rotation: rpy(0, 0, 1), placement: dh(a: 0.1)
+        }
+    });
+    assert_eq!(
+        e,
+        [
+            "`axis` cannot be given with `placement: dh(..)`: `dh(..)` fixes the axis: the joint \
+             moves about or along z of its DH frame; remove `axis`",
+            "`at` cannot be given with `placement: dh(..)`: `dh(..)` places the joint frame; \
+             remove `at`",
+            "`rotation` cannot be given with `placement: dh(..)`: `dh(..)` places the joint \
+             frame; remove `rotation`",
+        ]
+    );
+    // A parameter in the field given with the row is not also reported as unused.
+    let e = errors(quote! {
+        pub struct P;
+        parameters: [offset = 0.1];
+        body b { mass: 1.0, com: [0.1, 0.0, 0.0], shape: point }
+        joint j: revolute(ground -> b) { at: [0.0, 0.0, offset], placement: dh(a: 0.1) }
+    });
+    assert_eq!(e.len(), 1, "{e:?}");
+    assert!(e[0].starts_with("`at` cannot be given with"), "{e:?}");
+    let e = errors(quote! {
+        pub struct P;
+        body a { mass: 1.0, com: [0.1, 0.0, 0.0], shape: point }
+        body b { mass: 1.0, shape: point }
+        joint j: revolute(ground -> a) { axis: z }
+        joint w: fixed(a -> b) { placement: mdh(a: 0.1, alpha: pi / 2) }
+    });
+    assert_eq!(
+        e,
+        [
+            "a fixed joint cannot be placed by `mdh(..)`: a Denavit–Hartenberg row places the \
+          axis of a revolute or prismatic joint; place a fixed joint with `at` and `rotation`"
+        ]
+    );
+    let e = errors(quote! {
+        pub struct P;
+        parameters: [twist = 0.1];
+        body b { mass: 1.0, com: [0.1, 0.0, 0.0], shape: point }
+        joint j: revolute(ground -> b) { placement: dh(alpha: twist) }
+    });
+    assert_eq!(e.len(), 1, "{e:?}");
+    assert!(
+        e[0].starts_with("parameter `twist` cannot be used in a DH angle (`alpha` or `theta`)"),
+        "{e:?}"
+    );
+    // Lengths stay symbolic: the link length moves the child's mass centre and its child's
+    // joint.
+    let m = lower_tokens(quote! {
+        pub struct P;
+        parameters: [reach = 0.4, lift = 0.2];
+        body b { mass: 1.0, com: [-0.1, 0.0, 0.0], shape: point }
+        body c { mass: 1.0, com: [0.1, 0.0, 0.0], shape: point }
+        joint j: revolute(ground -> b) { placement: dh(a: reach, alpha: pi / 2, d: lift) }
+        joint k: revolute(b -> c) { placement: dh(d: 0.1) }
+    })
+    .expect("valid");
+    let p = [0.4, 0.2];
+    assert_eq!(
+        value::nominal3(&m.bodies[0].joint.translation_in_parent, &p),
+        [0.0, 0.0, 0.2]
+    );
+    let com = &m.bodies[0].parts[0].com_in_body;
+    assert_eq!(com[0].terms, [(0, 1.0)]);
+    assert!((com[0].nominal(&p) - 0.3).abs() < 1e-15);
+    // k's joint frame: d = 0.1 along z of b's DH link frame, carried by b's
+    // C = Tx(reach) Rx(π/2): Rx(π/2) [0, 0, 0.1] + [reach, 0, 0] = [reach, −0.1, 0].
+    let t = value::nominal3(&m.bodies[1].joint.translation_in_parent, &p);
+    assert!(
+        (t[0] - 0.4).abs() < 1e-15 && (t[1] + 0.1).abs() < 1e-15 && t[2] == 0.0,
+        "{t:?}"
+    );
+}

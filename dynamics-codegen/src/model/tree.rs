@@ -32,10 +32,6 @@ fn zero3() -> Vec3 {
     std::array::from_fn(|_| Value::constant(0.0))
 }
 
-fn mat_mul(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
-}
-
 /// Builds the tree of a declaration that passed every rule of [`rules::check_all`].
 pub(crate) fn build(
     mechanism: &syntax::Mechanism,
@@ -66,7 +62,7 @@ pub(crate) fn build(
             name => attached[*body_index.get(name)?].clone()?,
         };
         // Pose of the joint frame in the parent's tree body.
-        let rotation = mat_mul(&parent.rotation, &joint.rotation);
+        let rotation = value::rotation_product(&parent.rotation, &joint.rotation);
         let translation = value::add(
             &value::rotate(&parent.rotation, &joint.translation),
             &parent.translation,
@@ -129,11 +125,31 @@ pub(crate) fn build(
         };
         nq += dq;
         nv += dv;
-        attached[child] = Some(Attachment {
-            body: Some(bodies.len()),
-            rotation: IDENTITY,
-            translation: zero3(),
-        });
+        // The child's declared frame in its tree body's frame: the same frame, or a
+        // standard DH row's C = Tx(a) Rx(α) (see `super::dh`). Everything declared in the
+        // child's frame reaches the tree through this placement, as a welded body's does;
+        // its own mass centre and inertia are carried here.
+        let (com_in_body, inertia_com_in_body) = match &joint.child_frame {
+            Some(c) => {
+                attached[child] = Some(Attachment {
+                    body: Some(bodies.len()),
+                    rotation: c.rotation,
+                    translation: c.translation.clone(),
+                });
+                (
+                    c.point(&declared.com),
+                    value::rotate_matrix(&c.rotation, &declared.inertia),
+                )
+            }
+            None => {
+                attached[child] = Some(Attachment {
+                    body: Some(bodies.len()),
+                    rotation: IDENTITY,
+                    translation: zero3(),
+                });
+                (declared.com.clone(), declared.inertia.clone())
+            }
+        };
         bodies.push(Body {
             name: declared.name.text.clone(),
             docs: declared.docs.clone(),
@@ -144,8 +160,8 @@ pub(crate) fn build(
                 docs: Vec::new(),
                 weld: None,
                 mass: declared.mass.clone(),
-                com_in_body: declared.com.clone(),
-                inertia_com_in_body: declared.inertia.clone(),
+                com_in_body,
+                inertia_com_in_body,
             }],
         });
     }
@@ -198,6 +214,10 @@ pub(crate) fn build(
             axis: j.axis.map_or([0.0; 3], |(a, _)| a),
             translation: j.translation.clone(),
             rotation: j.rotation,
+            child_frame: j
+                .child_frame
+                .as_ref()
+                .map(|c| (c.translation.clone(), c.rotation)),
             armature: j.armature.0.clone(),
             damping: j.damping.0.clone(),
         })
@@ -294,7 +314,7 @@ fn frames(
             name: f.name.text.clone(),
             docs: f.docs.clone(),
             body: at.body,
-            rotation_in_body: mat_mul(&at.rotation, &f.rotation),
+            rotation_in_body: value::rotation_product(&at.rotation, &f.rotation),
             origin_in_body: value::add(&value::rotate(&at.rotation, &translation), &at.translation),
         })
     };

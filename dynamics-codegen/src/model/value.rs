@@ -96,6 +96,13 @@ pub fn rotate(r: &[[f64; 3]; 3], v: &Vec3) -> Vec3 {
     std::array::from_fn(|i| (0..3).fold(Value::constant(0.0), |acc, j| &acc + &(&v[j] * r[i][j])))
 }
 
+/// `A B` of two constant rotations (rows): how the tree composes placements, and how a
+/// modified DH row composes Rx(α) Rz(θ) (the same arithmetic, so that a table declared in
+/// either convention gives the same numbers).
+pub fn rotation_product(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
+}
+
 /// `R M Rᵀ` for a constant rotation R and an affine matrix M.
 pub fn rotate_matrix(r: &[[f64; 3]; 3], m: &Mat3) -> Mat3 {
     std::array::from_fn(|i| {

@@ -391,8 +391,51 @@ pub enum JointKind {
     Free,
 }
 
-/// `joint name: kind(parent -> child) { axis: .., at: .., rotation: .., armature: .., damping: ..,
-/// friction: .., limits: { .. }, driven: .. }`.
+/// The two Denavit–Hartenberg conventions of [`DhPlacement`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DhConvention {
+    /// `dh(..)`, standard (distal) DH: on joint i the row (a_i, α_i, d_i, θ_i), frame i =
+    /// frame i−1 · Rz(θ) Tz(d) Tx(a) Rx(α), the joint's axis the z axis of frame i−1.
+    Standard,
+    /// `mdh(..)`, modified (proximal) DH, Craig's: on joint i the row (a_{i−1}, α_{i−1},
+    /// d_i, θ_i), frame i = frame i−1 · Rx(α) Tx(a) Rz(θ) Tz(d), the joint's axis the z
+    /// axis of frame i.
+    Modified,
+}
+
+impl DhConvention {
+    /// The form's word: `dh` or `mdh`.
+    pub fn word(self) -> &'static str {
+        match self {
+            DhConvention::Standard => "dh",
+            DhConvention::Modified => "mdh",
+        }
+    }
+}
+
+/// `placement: dh(a: .., alpha: .., d: .., theta: ..)` or `placement: mdh(..)`: a revolute
+/// or prismatic joint placed by a row of a Denavit–Hartenberg table instead of `at`,
+/// `rotation` and `axis` (the axis is z of the DH frame). Each entry is optional, 0 when
+/// absent; the joint's coordinate adds to θ (revolute) or d (prismatic), so the entries
+/// given are the offsets at q = 0.
+#[derive(Clone, Debug)]
+pub struct DhPlacement {
+    /// Standard or modified.
+    pub convention: DhConvention,
+    /// Link length a (m).
+    pub a: Option<Number>,
+    /// Link twist α (rad).
+    pub alpha: Option<Number>,
+    /// Link offset d (m).
+    pub d: Option<Number>,
+    /// Joint angle θ (rad).
+    pub theta: Option<Number>,
+    /// The whole form, `dh(..)` or `mdh(..)`.
+    pub span: SpanRange,
+}
+
+/// `joint name: kind(parent -> child) { axis: .., at: .., rotation: .., placement: ..,
+/// armature: .., damping: .., friction: .., limits: { .. }, driven: .. }`.
 #[derive(Clone, Debug)]
 pub struct Joint {
     /// Doc comments.
@@ -413,6 +456,9 @@ pub struct Joint {
     pub at: Option<Vector>,
     /// The joint frame's rotation in the parent frame.
     pub rotation: Option<Rotation>,
+    /// A Denavit–Hartenberg row placing the joint (instead of `axis`, `at` and
+    /// `rotation`).
+    pub placement: Option<DhPlacement>,
     /// Rotor inertia reflected to the coordinate.
     pub armature: Option<Number>,
     /// Viscous friction coefficient.

@@ -854,6 +854,7 @@ fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
         axis: None,
         at: None,
         rotation: None,
+        placement: None,
         armature: None,
         damping: None,
         friction: None,
@@ -869,6 +870,7 @@ fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
             "axis" => joint.axis = Some(parse_axis(content)?),
             "at" => joint.at = Some(parse_vector(content)?),
             "rotation" => joint.rotation = Some(parse_rotation(content)?),
+            "placement" => joint.placement = Some(parse_dh_placement(content)?),
             "armature" => joint.armature = Some(parse_number(content)?),
             "damping" => joint.damping = Some(parse_number(content)?),
             "friction" => joint.friction = Some(parse_number(content)?),
@@ -884,10 +886,88 @@ fn parse_joint(input: ParseStream, docs: Vec<String>) -> syn::Result<Joint> {
     .map_err(|e| {
         with_hint(
             e,
-            "joint fields are axis, at, rotation, armature, damping, friction, limits, driven",
+            "joint fields are axis, at, rotation, placement, armature, damping, friction, limits, \
+             driven",
         )
     })?;
     Ok(joint)
+}
+
+/// The forms of a joint's `placement:`.
+const DH_FORMS: [&str; 2] = ["dh", "mdh"];
+
+/// The entries of a DH row, in the order of [`DhPlacement`]'s fields.
+const DH_ENTRIES: [&str; 4] = ["a", "alpha", "d", "theta"];
+
+/// `dh(a: .., alpha: .., d: .., theta: ..)` or `mdh(..)`: each entry at most once, in any
+/// order, 0 when absent.
+fn parse_dh_placement(input: ParseStream) -> syn::Result<DhPlacement> {
+    let expected = "expected `dh(a: .., alpha: .., d: .., theta: ..)` (standard \
+                    Denavit–Hartenberg) or `mdh(..)` (modified, Craig's)";
+    let form = input
+        .call(Ident::parse_any)
+        .map_err(|e| syn::Error::new(e.span(), expected))?;
+    let convention = match form.to_string().as_str() {
+        "dh" => DhConvention::Standard,
+        "mdh" => DhConvention::Modified,
+        other => {
+            let hint = match closest(other, &DH_FORMS) {
+                Some(near) => format!("did you mean `{near}`? "),
+                None => String::new(),
+            };
+            return Err(syn::Error::new(
+                form.span(),
+                format!("unknown placement `{other}`; {hint}{expected}"),
+            ));
+        }
+    };
+    if !input.peek(syn::token::Paren) {
+        return Err(syn::Error::new(
+            form.span(),
+            format!("expected `{form}(a: .., alpha: .., d: .., theta: ..)`"),
+        ));
+    }
+    let content;
+    let paren = parenthesized!(content in input);
+    let span = SpanRange::new(form.span(), paren.span.join());
+    let mut entries: [Option<(Number, Span)>; 4] = Default::default();
+    while !content.is_empty() {
+        let key = content.call(Ident::parse_any)?;
+        let text = key.to_string();
+        let Some(index) = DH_ENTRIES.iter().position(|e| *e == text) else {
+            let hint = match closest(&text, &DH_ENTRIES) {
+                Some(near) => format!("did you mean `{near}`? The entries are"),
+                None => "the entries are".to_owned(),
+            };
+            return Err(syn::Error::new(
+                key.span(),
+                format!(
+                    "unknown DH entry `{text}`; {hint} a, alpha, d, theta (lengths in m, angles \
+                     in rad; each 0 when absent)"
+                ),
+            ));
+        };
+        if let Some((_, first)) = &entries[index] {
+            let mut error = syn::Error::new(key.span(), format!("`{text}` is given twice"));
+            error.combine(syn::Error::new(
+                *first,
+                format!("`{text}` is first given here"),
+            ));
+            return Err(error);
+        }
+        content.parse::<Token![:]>()?;
+        entries[index] = Some((parse_number(&content)?, key.span()));
+        comma_unless_end(&content)?;
+    }
+    let [a, alpha, d, theta] = entries.map(|e| e.map(|(number, _)| number));
+    Ok(DhPlacement {
+        convention,
+        a,
+        alpha,
+        d,
+        theta,
+        span,
+    })
 }
 
 /// `{ lower: .., upper: .., velocity: .., effort: .. }`, each entry optional.
@@ -1368,6 +1448,53 @@ mod tests {
             }
             other => panic!("unexpected {other:?}"),
         }
+    }
+
+    /// `placement: dh(..)` and `mdh(..)` take a, alpha, d, theta in any order, each at most
+    /// once and 0 when absent; a misspelt entry or form names the word meant.
+    #[test]
+    fn parses_dh_placements() {
+        let placement = |form: proc_macro2::TokenStream| {
+            parse(quote! {
+                struct P;
+                joint j: revolute(ground -> b) { placement: #form }
+            })
+            .map(|m| m.joints[0].placement.clone().expect("a placement"))
+        };
+        let p = placement(quote!(dh(theta: pi / 2, a: 0.4318, alpha: -pi / 2))).expect("parses");
+        assert_eq!(p.convention, DhConvention::Standard);
+        assert_eq!(p.a.map(|n| n.value), Some(NumberValue::Constant(0.4318)));
+        assert_eq!(
+            p.alpha.map(|n| n.value),
+            Some(NumberValue::Constant(-std::f64::consts::FRAC_PI_2))
+        );
+        assert!(p.d.is_none());
+        let p = placement(quote!(mdh(d: reach,))).expect("parses");
+        assert_eq!(p.convention, DhConvention::Modified);
+        assert!(matches!(
+            p.d.map(|n| n.value),
+            Some(NumberValue::Parameter { .. })
+        ));
+        let error = |form| placement(form).expect_err("rejected").to_string();
+        let e = error(quote!(dh(a: 0.1, alhpa: 0.2)));
+        assert!(
+            e.starts_with("unknown DH entry `alhpa`; did you mean `alpha`? The entries are a, alpha, d, theta"),
+            "{e}"
+        );
+        let e = error(quote!(dh(offset: 0.1)));
+        assert!(
+            e.starts_with("unknown DH entry `offset`; the entries are"),
+            "{e}"
+        );
+        let e = error(quote!(dh(d: 0.1, d: 0.2)));
+        assert_eq!(e, "`d` is given twice");
+        let e = error(quote!(mhd(a: 0.1)));
+        assert!(
+            e.starts_with("unknown placement `mhd`; did you mean `mdh`?"),
+            "{e}"
+        );
+        let e = error(quote!(dh));
+        assert_eq!(e, "expected `dh(a: .., alpha: .., d: .., theta: ..)`");
     }
 
     /// A misspelt item keyword or setting names itself and the word meant.

@@ -67,6 +67,12 @@ pub struct JointSpec {
     pub translation: [f64; 3],
     /// Rotation of the joint frame in the parent frame, by rows.
     pub rotation_rows: [[f64; 3]; 3],
+    /// Origin of the child body's frame in the joint frame after the motion (zero unless
+    /// [`Self::with_child_frame`]).
+    pub child_translation: [f64; 3],
+    /// Rotation of the child body's frame in the joint frame after the motion, by rows
+    /// (the identity unless [`Self::with_child_frame`]).
+    pub child_rotation_rows: [[f64; 3]; 3],
     /// Rotor inertia reflected to each coordinate of the joint.
     pub armature: f64,
     /// Viscous friction coefficient of each coordinate of the joint.
@@ -76,6 +82,13 @@ pub struct JointSpec {
 const IDENTITY_ROWS: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
 impl JointSpec {
+    /// The child's frame in the joint frame after the motion, `None` when it is that frame
+    /// (so that a joint without one is assembled as before, bit for bit).
+    pub(crate) fn child_frame(&self) -> Option<Placement> {
+        (self.child_translation != [0.0; 3] || self.child_rotation_rows != IDENTITY_ROWS)
+            .then(|| Placement::new(self.child_translation, self.child_rotation_rows))
+    }
+
     fn new(name: &str, kind: JointType, parent: &str, child: &str, axis: [f64; 3]) -> Self {
         JointSpec {
             name: name.to_owned(),
@@ -85,6 +98,8 @@ impl JointSpec {
             axis,
             translation: [0.0; 3],
             rotation_rows: IDENTITY_ROWS,
+            child_translation: [0.0; 3],
+            child_rotation_rows: IDENTITY_ROWS,
             armature: 0.0,
             damping: 0.0,
         }
@@ -114,6 +129,19 @@ impl JointSpec {
     pub fn placed(mut self, translation: [f64; 3], rotation_rows: [[f64; 3]; 3]) -> Self {
         self.translation = translation;
         self.rotation_rows = rotation_rows;
+        self
+    }
+
+    /// Places the child body's frame in the joint frame after the motion:
+    /// `x_joint = R x_child + translation`, R given by rows. Without it the child's frame is
+    /// the joint frame after the motion. The child's inertial data, the frames and loads
+    /// declared on it and the placements of its children's joints are in the child's
+    /// frame; the body of the tree (its pose, the frame its joint moves) is the joint frame.
+    /// A standard Denavit–Hartenberg row gives Tx(a) Rx(α) here (the language's
+    /// `placement: dh(..)`).
+    pub fn with_child_frame(mut self, translation: [f64; 3], rotation_rows: [[f64; 3]; 3]) -> Self {
+        self.child_translation = translation;
+        self.child_rotation_rows = rotation_rows;
         self
     }
 
@@ -529,16 +557,21 @@ impl ModelBuilder {
             };
             let joint_pose =
                 parent_pose.compose(&Placement::new(spec.translation, spec.rotation_rows));
+            let child_frame = spec.child_frame();
             let child = index_of[spec.child.as_str()];
             let inertia = &self.bodies[child].inertia;
             let axis = rules::unit_axis(spec.axis);
             let kind = match spec.kind {
                 JointType::Fixed => {
+                    let child_pose = match &child_frame {
+                        Some(frame) => joint_pose.compose(frame),
+                        None => joint_pose,
+                    };
                     if let Some(b) = tree_parent {
-                        let moved = inertia.transformed(&joint_pose);
+                        let moved = inertia.transformed(&child_pose);
                         bodies[b].inertia = bodies[b].inertia.combined(&moved);
                     }
-                    attached[child] = Some((tree_parent, joint_pose));
+                    attached[child] = Some((tree_parent, child_pose));
                     continue;
                 }
                 JointType::Revolute => JointKind::Revolute {
@@ -560,12 +593,17 @@ impl ModelBuilder {
             };
             nq += joint.kind.nq();
             nv += joint.kind.nv();
-            attached[child] = Some((Some(bodies.len()), Placement::identity()));
+            // The child's frame in its tree body (the joint frame after the motion).
+            let (child_pose, inertia) = match child_frame {
+                Some(frame) => (frame.clone(), inertia.transformed(&frame)),
+                None => (Placement::identity(), inertia.clone()),
+            };
+            attached[child] = Some((Some(bodies.len()), child_pose));
             bodies.push(Body {
                 name: spec.child.clone(),
                 parent: tree_parent,
                 joint,
-                inertia: inertia.clone(),
+                inertia,
             });
         }
         let mut frames: Vec<Frame> = self

@@ -198,7 +198,11 @@ pub(crate) fn merged_inertias_are_physical(
                 root = Some(at);
                 break;
             };
-            pose = Placement::new(joint.translation, joint.rotation_rows).compose(&pose);
+            let mut placement = Placement::new(joint.translation, joint.rotation_rows);
+            if let Some(frame) = joint.child_frame() {
+                placement = placement.compose(&frame);
+            }
+            pose = placement.compose(&pose);
             if joint.parent == GROUND {
                 root = None;
                 break;
@@ -257,10 +261,12 @@ pub(crate) fn merged_inertias_are_physical(
 /// Rule: every number of a joint (axis, placement, armature, damping) is finite.
 pub(crate) fn joint_numbers_are_finite(joint: &JointSpec, errors: &mut Vec<ModelError>) {
     let item = || format!("joint `{}`", joint.name);
-    let checks: [(&'static str, &[f64]); 5] = [
+    let checks: [(&'static str, &[f64]); 7] = [
         ("axis", &joint.axis),
         ("translation", &joint.translation),
         ("rotation", joint.rotation_rows.as_flattened()),
+        ("child translation", &joint.child_translation),
+        ("child rotation", joint.child_rotation_rows.as_flattened()),
         ("armature", std::slice::from_ref(&joint.armature)),
         ("damping", std::slice::from_ref(&joint.damping)),
     ];
@@ -337,9 +343,19 @@ fn rotation_defect(rows: [[f64; 3]; 3]) -> Option<RotationDefect> {
     }
 }
 
-/// Rule: a placement rotation is a proper rotation: RᵀR = 1 and det R = +1.
+/// Rule: a placement rotation is a proper rotation: RᵀR = 1 and det R = +1 (the joint
+/// frame's, and the child's frame's when [`JointSpec::with_child_frame`] gave one).
 pub(crate) fn rotation_is_proper(joint: &JointSpec, errors: &mut Vec<ModelError>) {
-    match rotation_defect(joint.rotation_rows) {
+    rotation_rows_are_proper(joint, joint.rotation_rows, errors);
+    let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    if joint.child_rotation_rows != identity {
+        rotation_rows_are_proper(joint, joint.child_rotation_rows, errors);
+    }
+}
+
+/// [`rotation_is_proper`] for one of a joint's rotations.
+fn rotation_rows_are_proper(joint: &JointSpec, rows: [[f64; 3]; 3], errors: &mut Vec<ModelError>) {
+    match rotation_defect(rows) {
         Some(RotationDefect::NotOrthonormal(deviation)) => {
             errors.push(ModelError::RotationNotOrthonormal {
                 joint: joint.name.clone(),

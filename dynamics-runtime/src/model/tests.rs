@@ -812,3 +812,126 @@ fn a_load_names_a_declared_body_and_a_name_of_its_own() {
     let (e, _) = only_error(pendulum().load(LoadSpec::force("push", "rod").at([f64::NAN; 3])));
     assert!(matches!(e, ModelError::NonFinite { field: "point", .. }));
 }
+
+/// A joint's child frame (a standard DH row's Tx(a) Rx(α)) places the child's declared
+/// frame in its tree body: the body's inertia, its frame, a frame and a load declared on it,
+/// a child joint and a body welded to it are all carried by it, exactly as if they had
+/// been declared in the tree body's frame; and a child frame given on a fixed joint composes
+/// after the weld's placement.
+#[test]
+fn a_child_frame_carries_what_is_declared_on_the_child() {
+    let quarter_x = [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]];
+    let c = Placement::new([0.3, 0.0, 0.0], quarter_x);
+    let inertia = Inertia::new(
+        2.0,
+        [0.1, 0.2, -0.05],
+        [[0.03, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.04]],
+    );
+    let tip = Inertia::new(
+        0.5,
+        [0.0, 0.0, 0.1],
+        [[1e-3, 0.0, 0.0], [0.0, 1e-3, 0.0], [0.0, 0.0, 2e-3]],
+    );
+    let declared = ModelBuilder::new()
+        .body(BodySpec::new("link", inertia.clone()))
+        .body(BodySpec::new("tip", tip.clone()))
+        .body(BodySpec::new("weight", tip.clone()))
+        .joint(
+            JointSpec::revolute("j1", GROUND, "link", [0.0, 0.0, 1.0])
+                .placed(
+                    [0.0, 0.0, 0.4],
+                    [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
+                )
+                .with_child_frame([0.3, 0.0, 0.0], quarter_x),
+        )
+        .joint(JointSpec::revolute("j2", "link", "tip", [0.0, 0.0, 1.0]).at([0.0, 0.0, 0.2]))
+        .joint(JointSpec::fixed("bolt", "link", "weight").at([0.05, 0.0, 0.0]))
+        .frame(FrameSpec::new("tool", "link").at([0.0, 0.1, 0.0]))
+        .load(LoadSpec::force("push", "link").at([0.0, 0.0, 0.1]))
+        .build()
+        .expect("valid");
+    let by_hand = ModelBuilder::new()
+        .body(BodySpec::new("link", inertia.transformed(&c)))
+        .body(BodySpec::new("tip", tip.clone()))
+        .joint(
+            JointSpec::revolute("j1", GROUND, "link", [0.0, 0.0, 1.0]).placed(
+                [0.0, 0.0, 0.4],
+                [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
+            ),
+        )
+        .joint({
+            let p = c.compose(&Placement::translation([0.0, 0.0, 0.2]));
+            let rows = std::array::from_fn(|i| std::array::from_fn(|j| p.rotation[(i, j)]));
+            JointSpec::revolute("j2", "link", "tip", [0.0, 0.0, 1.0])
+                .placed(p.translation.into(), rows)
+        })
+        .build()
+        .expect("valid");
+    for (a, b) in declared.bodies().iter().zip(by_hand.bodies()) {
+        assert!(
+            (a.joint.placement_in_parent.rotation - b.joint.placement_in_parent.rotation).norm()
+                < 1e-15
+        );
+        assert!(
+            (a.joint.placement_in_parent.translation - b.joint.placement_in_parent.translation)
+                .norm()
+                < 1e-15
+        );
+    }
+    // The link's own inertia with the weight's, welded at c · (0.05, 0, 0).
+    let weight = tip.transformed(&c.compose(&Placement::translation([0.05, 0.0, 0.0])));
+    let link = &declared.bodies()[0].inertia;
+    let expected = inertia.transformed(&c).combined(&weight);
+    assert!((link.mass - expected.mass).abs() < 1e-15);
+    assert!((link.com_in_body - expected.com_in_body).norm() < 1e-15);
+    assert!((link.inertia_com_in_body - expected.inertia_com_in_body).norm() < 1e-15);
+    // The body's own frame is its declared frame, C in the tree body.
+    let frame = declared.frame("link").expect("link");
+    assert_eq!((frame.body, &frame.placement_in_body), (Some(0), &c));
+    let tool = declared.frame("tool").expect("tool");
+    assert_eq!(
+        tool.placement_in_body,
+        c.compose(&Placement::translation([0.0, 0.1, 0.0]))
+    );
+    let push = &declared.loads()[0];
+    assert_eq!(
+        push.placement_in_body,
+        c.compose(&Placement::translation([0.0, 0.0, 0.1]))
+    );
+    // On a fixed joint, the child's frame is composed after the weld's placement.
+    let welded = ModelBuilder::new()
+        .body(BodySpec::new("link", inertia.clone()))
+        .body(BodySpec::new("weight", tip.clone()))
+        .joint(JointSpec::revolute("j1", GROUND, "link", [0.0, 0.0, 1.0]))
+        .joint(
+            JointSpec::fixed("bolt", "link", "weight")
+                .at([0.05, 0.0, 0.0])
+                .with_child_frame([0.3, 0.0, 0.0], quarter_x),
+        )
+        .build()
+        .expect("valid");
+    let weight = welded.frame("weight").expect("weight");
+    assert_eq!(
+        weight.placement_in_body,
+        Placement::translation([0.05, 0.0, 0.0]).compose(&c)
+    );
+}
+
+/// A child frame's rotation is checked as the joint's own.
+#[test]
+fn a_child_frame_rotation_is_proper() {
+    let mirror = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]];
+    let (e, _) = only_error(
+        ModelBuilder::new().body(rod("rod")).joint(
+            JointSpec::revolute("pivot", GROUND, "rod", [0.0, 0.0, 1.0])
+                .with_child_frame([0.0; 3], mirror),
+        ),
+    );
+    assert_eq!(
+        e,
+        ModelError::RotationImproper {
+            joint: "pivot".into(),
+            determinant: -1.0
+        }
+    );
+}
