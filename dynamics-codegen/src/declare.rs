@@ -586,6 +586,21 @@ pub fn dynamics_traits(model: &Model, rt: &TokenStream) -> TokenStream {
         }
     });
     let lagrangian = lagrangian_trait(model, rt);
+    let acceleration_derivatives = model.outputs.forward_dynamics_derivatives.then(|| {
+        quote! {
+            #[inline]
+            fn acceleration_derivatives(
+                q: &[T; #nq],
+                v: &[T; #nv],
+                tau: &[T; #nv],
+                parameters: &[T; #np],
+                loads: &[T; #nl],
+            ) -> Option<([[T; #nv]; #nv], [[T; #nv]; #nv])> {
+                #unused
+                Some(#name::forward_dynamics_derivatives(q, v, tau, #p_arg #loads_arg))
+            }
+        }
+    });
     quote! {
         impl<T: #rt::Scalar> #rt::Dynamics<T> for #name {
             type Configuration = [T; #nq];
@@ -628,6 +643,7 @@ pub fn dynamics_traits(model: &Model, rt: &TokenStream) -> TokenStream {
                 #unused
                 #name::forward_dynamics(q, v, tau, #p_arg #loads_arg)
             }
+            #acceleration_derivatives
             #[inline]
             fn integrate(q: &[T; #nq], v: &[T; #nv], dt: T) -> [T; #nq] {
                 let mut out = *q;

@@ -43,6 +43,21 @@ pub trait Dynamics<T: Scalar>: Mechanism {
     ) -> Self::Velocity;
     /// Where a step `dt` along velocity `v` leads from `q` (see [`integrate_configuration`]).
     fn integrate(q: &Self::Configuration, v: &Self::Velocity, dt: T) -> Self::Configuration;
+    /// (∂q̈/∂q, ∂q̈/∂q̇) of [`Dynamics::acceleration`], each `NV × NV` by rows, the q-columns
+    /// in the tangent space (a free base's increment in its own frame): the generated
+    /// `forward_dynamics_derivatives` when the mechanism asks for that output, `None`
+    /// otherwise (the default). The implicit integrators build their Newton Jacobian from
+    /// them when they are there.
+    fn acceleration_derivatives(
+        q: &Self::Configuration,
+        v: &Self::Velocity,
+        tau: &Self::Velocity,
+        parameters: &Self::Parameters,
+        loads: &Self::Loads,
+    ) -> Option<(Self::Matrix, Self::Matrix)> {
+        let _ = (q, v, tau, parameters, loads);
+        None
+    }
 }
 
 /// Kinetic plus potential energy of a generated mechanism.
