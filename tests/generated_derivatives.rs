@@ -447,7 +447,7 @@ fn derivatives_of_a_free_tree_are_the_double_double_central_differences() {
             };
             let shifted = |t: Dd| {
                 let mut out = v_dd.clone();
-                out[col] = out[col] + t;
+                out[col] += t;
                 out
             };
             let (q_plus, q_minus) = (moved(h), moved(-h));
