@@ -587,6 +587,16 @@ pub fn dynamics_traits(model: &Model, rt: &TokenStream) -> TokenStream {
     });
     let lagrangian = lagrangian_trait(model, rt);
     let acceleration_derivatives = model.outputs.forward_dynamics_derivatives.then(|| {
+        // With loads the generated function also gives ∂q̈/∂loads, third.
+        let call = if nl > 0 {
+            quote! {
+                let (by_q, by_v, _) =
+                    #name::forward_dynamics_derivatives(q, v, tau, #p_arg #loads_arg);
+                Some((by_q, by_v))
+            }
+        } else {
+            quote!(Some(#name::forward_dynamics_derivatives(q, v, tau, #p_arg #loads_arg)))
+        };
         quote! {
             #[inline]
             fn acceleration_derivatives(
@@ -597,7 +607,7 @@ pub fn dynamics_traits(model: &Model, rt: &TokenStream) -> TokenStream {
                 loads: &[T; #nl],
             ) -> Option<([[T; #nv]; #nv], [[T; #nv]; #nv])> {
                 #unused
-                Some(#name::forward_dynamics_derivatives(q, v, tau, #p_arg #loads_arg))
+                #call
             }
         }
     });

@@ -413,20 +413,33 @@ fn inverse_dynamics(model: &Model) -> Expanded {
 
 /// The two Jacobians of `outputs` with respect to q (tangent space) and q̇, as an output.
 fn state_jacobians(g: &Graph, model: &Model, outputs: &[Node]) -> Output {
-    Output::Tuple(vec![
-        Output::Matrix(derivatives::jacobian(
-            g,
-            model,
-            outputs,
-            With::Configuration,
-        )),
-        Output::Matrix(derivatives::jacobian(
-            g,
-            model,
-            outputs,
-            With::Array(Array::V),
-        )),
-    ])
+    Output::Tuple(
+        derivative_inputs(model)
+            .into_iter()
+            .map(|with| Output::Matrix(derivatives::jacobian(g, model, outputs, with)))
+            .collect(),
+    )
+}
+
+/// What the derivative outputs differentiate with respect to, in order: q (tangent space),
+/// q̇, and the loads' inputs when the mechanism declares loads.
+fn derivative_inputs(model: &Model) -> Vec<With> {
+    let mut with = vec![With::Configuration, With::Array(Array::V)];
+    if has_loads(model) {
+        with.push(With::Array(Array::Loads));
+    }
+    with
+}
+
+/// The doc sentence on the derivatives with respect to the loads, for a mechanism with
+/// loads.
+fn load_derivatives_doc(model: &Model) -> &'static str {
+    if has_loads(model) {
+        " The third matrix, nv × NUM_LOAD_INPUTS, is the derivative with respect to the \
+         `loads` inputs (constant in them: the loads enter linearly)."
+    } else {
+        ""
+    }
 }
 
 /// The doc sentence on the configuration derivative's convention.
@@ -455,7 +468,8 @@ fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
             "Derivatives of inverse dynamics: (∂τ/∂q, ∂τ/∂q̇), each nv × nv (row i: τ_i), at \
              (`q`, `v`, `a`); ∂τ/∂q̈ = M(q). By forward-mode differentiation of the \
              Newton–Euler expansion (Pinocchio's `computeRNEADerivatives`). \
-             {TANGENT_CONVENTION}"
+             {TANGENT_CONVENTION}{}",
+            load_derivatives_doc(model)
         ),
     }
 }
@@ -496,7 +510,8 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
             "Derivatives of forward dynamics: (∂q̈/∂q, ∂q̈/∂q̇), each nv × nv (row i: q̈_i), \
              at (`q`, `v`, `tau`); ∂q̈/∂τ = M(q)⁻¹ (`mass_matrix_inverse`). By {how}, the \
              cheaper of two ways for this mechanism (Pinocchio's `computeABADerivatives`). \
-             {TANGENT_CONVENTION}"
+             {TANGENT_CONVENTION}{}",
+            load_derivatives_doc(model)
         ),
     }
 }
@@ -527,9 +542,10 @@ fn forward_dynamics_derivatives_by_chain_rule(
         let at_qdd = g.substitute(&flat, |r| {
             (r.array == Array::A).then(|| qdd[r.index as usize])
         });
-        let columns: Vec<Vec<Node>> = (0..nv)
+        let width = rows_width(&at_qdd, nv);
+        let columns: Vec<Vec<Node>> = (0..width)
             .map(|c| {
-                let rhs = (0..nv).map(|r| g.neg(at_qdd[r * nv + c])).collect();
+                let rhs = (0..nv).map(|r| g.neg(at_qdd[r * width + c])).collect();
                 ldlt::solve(g, model, m.clone(), rhs)
             })
             .collect();
@@ -539,10 +555,12 @@ fn forward_dynamics_derivatives_by_chain_rule(
                 .collect(),
         )
     };
-    Output::Tuple(vec![
-        solved(With::Configuration),
-        solved(With::Array(Array::V)),
-    ])
+    Output::Tuple(derivative_inputs(model).into_iter().map(solved).collect())
+}
+
+/// The number of columns of `nv` rows stored one after the other in `flat`.
+fn rows_width(flat: &[Node], nv: usize) -> usize {
+    flat.len().checked_div(nv).unwrap_or(0)
 }
 
 fn mass_matrix_inverse(model: &Model) -> Expanded {

@@ -121,8 +121,8 @@
 //! | `frame_jacobians_local` | the same in the frame's own axes (`LOCAL`) | `q` | `[[[T; NV]; 6]; NF]` |
 //! | `frame_velocities` | per frame, [v; ω] = J q̇, world axes | `q, v` | `[[T; 6]; NF]` |
 //! | `frame_acceleration_biases` | per frame, J̇ q̇: its classical acceleration [a; α] at q̈ = 0 without gravity, world axes | `q, v` | `[[T; 6]; NF]` |
-//! | `inverse_dynamics_derivatives` | (∂τ/∂q, ∂τ/∂q̇); ∂τ/∂q̈ = M | `q, v, a` (+ loads) | `([[T; NV]; NV], [[T; NV]; NV])` |
-//! | `forward_dynamics_derivatives` | (∂q̈/∂q, ∂q̈/∂q̇); ∂q̈/∂τ = M⁻¹ | `q, v, tau` (+ loads) | `([[T; NV]; NV], [[T; NV]; NV])` |
+//! | `inverse_dynamics_derivatives` | (∂τ/∂q, ∂τ/∂q̇); ∂τ/∂q̈ = M; with loads also ∂τ/∂loads | `q, v, a` (+ loads) | `([[T; NV]; NV], [[T; NV]; NV])`, with loads `(.., .., [[T; NUM_LOAD_INPUTS]; NV])` |
+//! | `forward_dynamics_derivatives` | (∂q̈/∂q, ∂q̈/∂q̇); ∂q̈/∂τ = M⁻¹; with loads also ∂q̈/∂loads | `q, v, tau` (+ loads) | as `inverse_dynamics_derivatives` |
 //! | `mass_matrix_inverse` | M(q)⁻¹ | `q` | `[[T; NV]; NV]` |
 //!
 //! `kinetic_energy` and `potential_energy` come together, as do the three constraint

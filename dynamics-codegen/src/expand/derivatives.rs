@@ -82,14 +82,20 @@ fn configuration_tangent(g: &Graph, model: &Model, col: usize) -> impl Fn(InputR
 pub enum With {
     /// The configuration, in the tangent space (nv columns).
     Configuration,
-    /// One of the arrays of length nv (v, a, τ): plain partial derivatives.
+    /// One of the input arrays (v, a, τ: nv columns; the loads: one per load input): plain
+    /// partial derivatives.
     Array(Array),
 }
 
-/// ∂outputs/∂x as rows (one per output) of nv entries, x the configuration (tangent
-/// space) or an array of length nv.
+/// ∂outputs/∂x as rows (one per output), x the configuration (tangent space, nv columns) or
+/// an input array (a column per element).
 pub fn jacobian(g: &Graph, model: &Model, outputs: &[Node], with: With) -> Vec<Vec<Node>> {
-    let columns: Vec<Vec<Node>> = (0..model.nv)
+    let count = match with {
+        With::Array(Array::Loads) => model.load_inputs,
+        With::Array(Array::P) => model.parameters.len(),
+        With::Configuration | With::Array(_) => model.nv,
+    };
+    let columns: Vec<Vec<Node>> = (0..count)
         .map(|col| match with {
             With::Configuration => g.derivative(outputs, configuration_tangent(g, model, col)),
             With::Array(array) => g.derivative(outputs, |r| {
