@@ -290,7 +290,9 @@
 //!
 //! Wherever a number is expected, a constant expression is accepted: integer and float
 //! literals, `pi` (or `PI`), unary minus, `+ - * /` and parentheses. An identifier other
-//! than `pi` is a parameter, which may only be multiplied or divided by a constant.
+//! than `pi` is a parameter, which may only be multiplied or divided by a constant. A
+//! literal takes no type suffix (`300u8`, `1.1f32` and `2.0f64` are errors): the generated
+//! code is generic over its scalar type and converts every number to it.
 //!
 //! ```rust
 //! use dynamics_runtime::mechanism;

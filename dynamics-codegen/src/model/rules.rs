@@ -5,9 +5,10 @@
 //! use the parameters' nominal values. Tolerances are relative, as in the runtime's own
 //! validation, so that numbers rounded by hand or by a URDF exporter pass.
 //!
-//! Numbers the user wrote are printed as written (Rust's shortest round-trip form); numbers
-//! a rule computed (principal moments, determinants, sums) with six significant digits, by
-//! [`computed`], so that rounding noise such as `0.30000000000000004` does not show.
+//! Numbers the user wrote are printed as written (Rust's shortest round-trip form, in
+//! scientific notation below 1e-4 and from 1e6: [`written`]); numbers a rule computed
+//! (principal moments, determinants, sums) with six significant digits, by [`computed`], so
+//! that rounding noise such as `0.30000000000000004` does not show.
 //!
 //! The compiler is the strict judge of the inertia and rotation rules: the runtime's
 //! `ModelBuilder` checks them again with nalgebra's eigenvalue solver, which differs from
@@ -95,11 +96,23 @@ pub(crate) fn computed(x: f64) -> String {
     }
 }
 
-/// The nominal value of a number for a message: as written when it is a constant, else
-/// (a parameter times a coefficient, at the parameter's nominal value) as [`computed`].
+/// A number the user wrote, for a message: its shortest round-trip digits (`0.1`, `-2`,
+/// never rounded), in positional notation from 1e-4 to 1e6 as [`computed`], in scientific
+/// notation outside, so that `1e-300` prints as `1e-300` rather than as 300 digits.
+pub(crate) fn written(x: f64) -> String {
+    if !x.is_finite() || x == 0.0 || (1e-4..1e6).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// The nominal value of a number for a message: as written when it is a constant
+/// ([`written`]), else (a parameter times a coefficient, at the parameter's nominal value)
+/// as [`computed`].
 fn nominal_text(value: &Value, p: &[f64]) -> String {
     if value.is_constant() {
-        format!("{}", value.constant)
+        written(value.constant)
     } else {
         computed(value.nominal(p))
     }
@@ -155,7 +168,10 @@ pub(crate) fn shape_dimension_is_not_negative(value: f64, span: SpanRange, d: &m
     if value < 0.0 {
         d.error(
             span,
-            format!("a shape dimension is {value} m, which is negative"),
+            format!(
+                "a shape dimension is {} m, which is negative",
+                written(value)
+            ),
         );
     }
 }
@@ -809,7 +825,8 @@ fn limits_and_friction_fit_the_joint(joint: &ResolvedJoint, d: &mut Diagnostics)
             format!(
                 "joint `{name}` has lower limit {} above its upper limit {}; the lower limit \
                  must be ≤ the upper",
-                l.lower.0, l.upper.0
+                written(l.lower.0),
+                written(l.upper.0)
             ),
         );
     }
@@ -821,7 +838,10 @@ fn limits_and_friction_fit_the_joint(joint: &ResolvedJoint, d: &mut Diagnostics)
         if value < 0.0 {
             d.error(
                 span,
-                format!("joint `{name}` has {what} {value}; it must be ≥ 0"),
+                format!(
+                    "joint `{name}` has {what} {}; it must be ≥ 0",
+                    written(value)
+                ),
             );
         }
     }
