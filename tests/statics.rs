@@ -275,6 +275,28 @@ fn four_bar_energy_balance() {
     }
 }
 
+/// Issue 21: a force analysis singular at special configurations only compiles (the
+/// compile-time rank check evaluates A(q) at random configurations, where it is regular) and
+/// is reported at run time there. Turned upright, the supported beam puts the roller's line
+/// of action (the ground's y through B) through the pin A: no unknown takes the moment
+/// about A. (`FourBarRockerDriven` locks at its dead centre: the test below.)
+#[test]
+fn singular_only_at_special_configurations_is_a_run_time_error() {
+    let loads = [0.0, -100.0, 0.0, 0.0, -200.0, 0.0];
+    let at =
+        |q: f64| ForceAnalysis::from(SupportedBeam::force_analysis(&[q], &[0.0], &[0.0], &loads));
+    let upright = at(std::f64::consts::FRAC_PI_2);
+    let error = upright
+        .checked(1e-9)
+        .expect_err("the roller's line through the pin");
+    assert!(
+        error.pivot_ratio.is_nan() || error.pivot_ratio < 1e-12,
+        "{error}"
+    );
+    assert!(error.to_string().contains("singular or ill-conditioned"));
+    at(0.3).checked(1e-9).expect("regular away from upright");
+}
+
 #[test]
 fn four_bar_dead_centre_is_reported() {
     // Driven at the rocker, the four-bar locks when crank and coupler are collinear

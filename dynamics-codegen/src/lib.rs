@@ -5,6 +5,8 @@
 //! ```text
 //! tokens ──parse──▶ syntax::Mechanism ──urdf::import──▶ (URDF links and joints added)
 //!   ──model::lower──▶ validated Model (every rule checked, errors at their spans)
+//!   ──determinacy::check──▶ the force analysis and loop closures of full rank at random
+//!                           configurations (evaluated through `expand`)
 //!   ──functions::CATALOG + expand──▶ one graph per requested function (textbook recursions;
 //!                                    base-parameter pass for the functions of the Lagrangian)
 //!   ──passes::latency, passes::signs──▶ the graphs regrouped for latency, signs settled
@@ -18,6 +20,7 @@
 //! result. `docs/ARCHITECTURE.md` in the repository describes each stage.
 
 mod declare;
+mod determinacy;
 mod expand;
 mod functions;
 mod ir;
@@ -100,6 +103,7 @@ impl Compiled {
 pub fn compile(mut mechanism: Mechanism, manifest_dir: &Path) -> syn::Result<Compiled> {
     let source = urdf::import(&mut mechanism, manifest_dir)?;
     let mut model = model::lower(&mechanism)?;
+    determinacy::check(&mechanism, &model)?;
     model
         .source_files
         .extend(source.map(|p| p.display().to_string()));

@@ -52,6 +52,7 @@ use crate::syntax::{
     SpanRange, Vector,
 };
 use roxmltree::{Document, Node, TextPos};
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 /// Reads the mechanism's URDF file (if it names one) and appends its bodies and joints.
@@ -208,11 +209,12 @@ pub fn import(
             driven: None,
         });
     }
+    let children: HashSet<&str> = robot.joints.iter().map(|j| j.child.as_str()).collect();
     let roots: Vec<&str> = robot
         .links
         .iter()
         .map(|l| l.name.as_str())
-        .filter(|l| !robot.joints.iter().any(|j| j.child == *l))
+        .filter(|l| !children.contains(l))
         .collect();
     match roots.as_slice() {
         [root] => mechanism.joints.push(Joint {
@@ -281,12 +283,19 @@ fn no_root(robot: &Robot) -> String {
     let Some(first) = robot.links.first() else {
         return "the file declares no `<link>`, so there is no root link".to_owned();
     };
-    let parent_joint = |link: &str| robot.joints.iter().find(|j| j.child == link);
-    // The joints met walking up from `first`, each to the parent of the one before.
+    // Each link's first joint naming it as child.
+    let mut parent_joints: HashMap<&str, &UrdfJoint> = HashMap::new();
+    for joint in &robot.joints {
+        parent_joints.entry(joint.child.as_str()).or_insert(joint);
+    }
+    let parent_joint = |link: &str| parent_joints.get(link).copied();
+    // The joints met walking up from `first`, each to the parent of the one before, and
+    // where each link was first met (the child of that path entry).
     let mut path: Vec<&UrdfJoint> = Vec::new();
+    let mut met: HashMap<&str, usize> = HashMap::new();
     let mut link = first.name.as_str();
     loop {
-        if let Some(start) = path.iter().position(|j| j.child == link) {
+        if let Some(&start) = met.get(link) {
             let steps: Vec<String> = path[start..]
                 .iter()
                 .rev()
@@ -305,6 +314,7 @@ fn no_root(robot: &Robot) -> String {
                 first.name
             );
         };
+        met.entry(joint.child.as_str()).or_insert(path.len());
         path.push(joint);
         link = &joint.parent;
     }

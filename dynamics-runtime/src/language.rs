@@ -299,7 +299,9 @@
 //!
 //! Wherever a number is expected, a constant expression is accepted: integer and float
 //! literals, `pi` (or `PI`), unary minus, `+ - * /` and parentheses. An identifier other
-//! than `pi` is a parameter, which may only be multiplied or divided by a constant.
+//! than `pi` is a parameter, which may only be multiplied or divided by a constant. A
+//! literal takes no type suffix (`300u8`, `1.1f32` and `2.0f64` are errors): the generated
+//! code is generic over its scalar type and converts every number to it.
 //!
 //! ```rust
 //! use dynamics_runtime::mechanism;
@@ -693,7 +695,13 @@
 //! mechanism without constraints every joint is driven; with constraints, the joints marked
 //! `driven: true`. The unknowns must match the equations, in number and body by body: a
 //! statically indeterminate structure, a motion with no input and a redundant constraint
-//! are compile-time errors.
+//! are compile-time errors. The macro also evaluates A(q), and the loop-closure Jacobian Φ_q,
+//! with the declaration's numbers at a few pseudo-random configurations: a matrix that
+//! loses rank at all of them (a roller whose normal a joint already holds, a support on the
+//! pivot it should brace) is a compile-time error naming the unknowns that cannot be found
+//! or the closure equations that are redundant. One singular at special configurations only
+//! (a toggle, a dead centre) compiles, and `ForceAnalysis::checked` refuses those at run
+//! time.
 //!
 //! ```rust
 //! use dynamics_runtime::{mechanism, ForceAnalysis};

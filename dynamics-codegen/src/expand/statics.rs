@@ -88,10 +88,25 @@ pub fn balance_equations(
         let wrench = (f.sub(g, *load_f), m.sub(g, *load_m));
         b.extend(rows.iter().map(|&row| component(&wrench, row)));
     }
-    // The unknowns' coefficients.
+    (balance_matrix(g, model, statics, transforms), b)
+}
+
+/// A(q) of the force analysis, by rows: the coefficient of each unknown in each body's
+/// balance equations (a function of q alone, built after b by [`balance_equations`]).
+pub fn balance_matrix(
+    g: &Graph,
+    model: &Model,
+    statics: &Statics,
+    transforms: &[JointTransform],
+) -> Vec<Vec<Node>> {
+    let rows = statics.rows_per_body();
+    let component = |(f, m): &(Vec3, Vec3), (kind, axis): (Component, usize)| match kind {
+        Component::Force => f.get(axis),
+        Component::Couple => m.get(axis),
+    };
     let poses = world_poses(g, model, transforms);
     let n = statics.unknowns.len();
-    let mut a = vec![vec![g.zero(); n]; b.len()];
+    let mut a = vec![vec![g.zero(); n]; rows.len() * model.bodies.len()];
     for (k, unknown) in statics.unknowns.iter().enumerate() {
         let c = &statics.connections[unknown.connection];
         let d = Vec3::constant(g, unknown.direction_in_first);
@@ -125,7 +140,7 @@ pub fn balance_equations(
             );
         }
     }
-    (a, b)
+    a
 }
 
 /// φ(q) of the declared constraints, one entry per closure component.

@@ -443,6 +443,34 @@ fn computed_numbers_have_six_significant_digits() {
     assert!(e.contains("damping -0.25;"), "{e}");
 }
 
+/// Issue 21 (item 13's leftovers): a number as written keeps its shortest round-trip
+/// digits, in scientific notation when very small or large (`1e-300` was printed with 300
+/// digits).
+#[test]
+fn written_numbers_are_short() {
+    use super::rules::written;
+    assert_eq!(written(-2.0), "-2");
+    assert_eq!(written(0.1), "0.1");
+    assert_eq!(written(0.30000000000000004), "0.30000000000000004");
+    assert_eq!(written(-1e-300), "-1e-300");
+    assert_eq!(written(1.5e-5), "1.5e-5");
+    assert_eq!(written(0.0001), "0.0001");
+    assert_eq!(written(123456.5), "123456.5");
+    assert_eq!(written(2.5e6), "2.5e6");
+    assert_eq!(written(1e300), "1e300");
+    assert_eq!(written(0.0), "0");
+    let e = errors(quote! {
+        struct S;
+        body bob { mass: -1e-300, com: [0.0, -0.5, 0.0], shape: rod(length: -2e-9, axis: x) }
+        joint pivot: revolute(ground -> bob) { axis: z, damping: -1e20 }
+    })
+    .join("\n");
+    assert!(e.contains("has mass -1e-300 kg"), "{e}");
+    assert!(e.contains("a shape dimension is -2e-9 m"), "{e}");
+    assert!(e.contains("damping -1e20;"), "{e}");
+    assert!(e.len() < 1000, "{e}");
+}
+
 #[test]
 fn an_unknown_output_suggests_the_closest_name() {
     let e = errors(quote! {

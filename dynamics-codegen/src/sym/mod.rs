@@ -48,6 +48,7 @@ pub use linalg::{Mat3, Vec3};
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::fmt;
+use std::hash::{BuildHasherDefault, Hasher};
 
 /// The id of a node of a [`Graph`]; displayed as `v12`, the variable name in emitted code.
 ///
@@ -257,7 +258,7 @@ pub struct Graph {
 #[derive(Debug)]
 struct Nodes {
     ops: Vec<Op>,
-    index: HashMap<Op, Node>,
+    index: HashMap<Op, Node, BuildHasherDefault<OpHasher>>,
     /// The most operations (not counting leaves) the graph takes ([`NODE_BUDGET`]).
     budget: usize,
     /// Whether an operation was refused for want of budget.
@@ -269,11 +270,60 @@ impl Default for Graph {
         Graph {
             inner: RefCell::new(Nodes {
                 ops: Vec::new(),
-                index: HashMap::new(),
+                index: HashMap::default(),
                 budget: BUDGET.with(std::cell::Cell::get),
                 exhausted: false,
             }),
         }
+    }
+}
+
+/// The hash of the hash-consing index: FxHash's multiply-rotate over the operation's words
+/// (an `Op` is a tag and at most two 32-bit ids or one 64-bit constant). Every node is
+/// looked up once when it is built, so this hash is the expansion's inner loop; std's
+/// SipHash (built against adversarial keys, which node ids are not) cost half of
+/// expanding a body of thousands of welded parts. The index is only looked up, never
+/// iterated, so the hash decides nothing but speed.
+#[derive(Default)]
+struct OpHasher(u64);
+
+impl OpHasher {
+    fn add(&mut self, word: u64) {
+        self.0 = (self.0.rotate_left(5) ^ word).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+impl Hasher for OpHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut word = [0u8; 8];
+            word[..chunk.len()].copy_from_slice(chunk);
+            self.add(u64::from_le_bytes(word));
+        }
+    }
+
+    fn write_u8(&mut self, x: u8) {
+        self.add(u64::from(x));
+    }
+
+    fn write_u32(&mut self, x: u32) {
+        self.add(u64::from(x));
+    }
+
+    fn write_u64(&mut self, x: u64) {
+        self.add(x);
+    }
+
+    fn write_usize(&mut self, x: usize) {
+        self.add(x as u64);
+    }
+
+    fn write_isize(&mut self, x: isize) {
+        self.add(x as u64);
     }
 }
 

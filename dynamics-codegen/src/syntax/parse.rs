@@ -466,11 +466,14 @@ fn parse_atom(input: ParseStream, depth: usize) -> syn::Result<(NumberValue, Spa
     if input.peek(syn::Lit) {
         let lit: syn::Lit = input.parse()?;
         let span = SpanRange::from(lit.span());
-        let value = match &lit {
-            syn::Lit::Float(f) => f.base10_parse::<f64>()?,
-            syn::Lit::Int(i) => i.base10_parse::<f64>()?,
+        let (value, suffix, digits) = match &lit {
+            syn::Lit::Float(f) => (f.base10_parse::<f64>()?, f.suffix(), f.base10_digits()),
+            syn::Lit::Int(i) => (i.base10_parse::<f64>()?, i.suffix(), i.base10_digits()),
             _ => return Err(not_a_number(lit.span())),
         };
+        if !suffix.is_empty() {
+            return Err(suffixed_number(&lit, suffix, digits));
+        }
         return Ok((NumberValue::Constant(value), span));
     }
     if input.peek(Ident) {
@@ -486,6 +489,32 @@ fn parse_atom(input: ParseStream, depth: usize) -> syn::Result<(NumberValue, Spa
         return Ok((value, span));
     }
     Err(not_a_number(input.span()))
+}
+
+/// The error for a literal with a type suffix (`300u8`, `1.1f32`, `2.0f64`). The suffix
+/// was ignored before (`300u8` read as 300, `1.1f32` as the f64 1.1, not as the f32 it
+/// names); it is refused rather than honoured because a mechanism's numbers have no Rust
+/// type: the generated code is generic over its scalar (f32, f64, double-double, SIMD
+/// lanes) and converts every constant to it. `f64` is refused too, although its value would
+/// be the one read: it would promise an f64 constant in the f32 instantiation, and one rule
+/// without exceptions is the simpler one to state.
+fn suffixed_number(lit: &syn::Lit, suffix: &str, digits: &str) -> syn::Error {
+    use quote::ToTokens;
+    let plain = if matches!(lit, syn::Lit::Int(_)) {
+        format!("{digits}.0")
+    } else {
+        let written = lit.to_token_stream().to_string();
+        written[..written.len() - suffix.len()]
+            .trim_end_matches('_')
+            .to_owned()
+    };
+    syn::Error::new(
+        lit.span(),
+        format!(
+            "a number in a mechanism takes no type suffix (`{suffix}`): the generated code \
+             converts every number to its own scalar type (f32, f64, …); write `{plain}`"
+        ),
+    )
 }
 
 /// `left op right`: constants combine; a parameter may only be scaled by a constant.
@@ -1537,6 +1566,25 @@ mod tests {
             .map_err(|e| e.to_string())?
             .join()
             .map_err(|_| "the parser's thread panicked".to_owned())?
+    }
+
+    /// Issue 21 (item 13's leftovers): a literal with a type suffix is an error at the
+    /// literal that says what to write instead; it was read without its suffix.
+    #[test]
+    fn number_literals_take_no_type_suffix() {
+        for (written, plain) in [
+            ("300u8", "300.0"),
+            ("1.1f32", "1.1"),
+            ("2.0f64", "2.0"),
+            ("1e3_f64", "1e3"),
+            ("7i32", "7.0"),
+        ] {
+            let e = mass_from_source(format!("-{written} * 2.0")).expect_err(written);
+            assert!(e.contains("takes no type suffix"), "{written}: {e}");
+            assert!(e.contains(&format!("write `{plain}`")), "{written}: {e}");
+        }
+        assert_eq!(mass_from_source("300".to_owned()), Ok(300.0));
+        assert_eq!(mass_from_source("1.1".to_owned()), Ok(1.1));
     }
 
     /// Issue item 10: deep nesting is an error, long flat sums and runs of minus signs parse
