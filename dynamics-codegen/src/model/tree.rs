@@ -425,12 +425,12 @@ fn check_coordinates_have_inertia(
         let world = poses(bodies, p, configuration);
         for (j, body) in bodies.iter().enumerate() {
             let (r_j, o_j) = world[j];
-            let mut mass = 0.0;
-            let mut inertia_about_origin = linear::ZERO;
+            // Each part of the subtree: mass, mass centre from the joint origin, I_G (world
+            // axes).
+            let mut parts = Vec::new();
             for k in (j..bodies.len()).filter(|&k| in_subtree(j, k)) {
                 let (r_k, o_k) = world[k];
                 for part in &bodies[k].parts {
-                    let m = part.mass.nominal(p);
                     let c = linear::sub_vectors(
                         &linear::add_vectors(
                             &o_k,
@@ -440,25 +440,41 @@ fn check_coordinates_have_inertia(
                     );
                     let i_g =
                         linear::rotate(&r_k, &rules::nominal_matrix(&part.inertia_com_in_body, p));
-                    mass += m;
-                    // I_G + m (|c|² 1 − c cᵀ), the parallel-axis shift to the joint origin.
-                    let shift = linear::sub(
-                        &linear::scale(&linear::IDENTITY, linear::norm_squared(&c)),
-                        &linear::outer(&c, &c),
-                    );
-                    inertia_about_origin = linear::add(
-                        &inertia_about_origin,
-                        &linear::add(&i_g, &linear::scale(&shift, m)),
-                    );
+                    parts.push((part.mass.nominal(p), c, i_g));
                 }
             }
+            let mass: f64 = parts.iter().map(|(m, _, _)| m).sum();
+            // Σ I_G + m (|c − o|² 1 − (c − o)(c − o)ᵀ): the parallel-axis shift to a point o.
+            let inertia_about = |o: &linear::Vector3| {
+                parts.iter().fold(linear::ZERO, |sum, (m, c, i_g)| {
+                    let d = linear::sub_vectors(c, o);
+                    let shift = linear::sub(
+                        &linear::scale(&linear::IDENTITY, linear::norm_squared(&d)),
+                        &linear::outer(&d, &d),
+                    );
+                    linear::add(&sum, &linear::add(i_g, &linear::scale(&shift, *m)))
+                })
+            };
             let moment = match body.joint.kind {
                 JointKind::Revolute { axis_in_joint } => {
                     let a = linear::mul_vector(&r_j, &axis_in_joint);
-                    linear::dot(&linear::vector_mul(&a, &inertia_about_origin), &a)
+                    linear::dot(&linear::vector_mul(&a, &inertia_about(&[0.0; 3])), &a)
                 }
                 JointKind::Prismatic { .. } => 0.0,
-                JointKind::Free => rules::principal_moments(&inertia_about_origin)[0],
+                // A free body turns about its centre of mass (a rod spinning about its own
+                // axis moves no mass, wherever the joint origin is): the inertia about the
+                // subtree's centre of mass.
+                JointKind::Free => {
+                    let first_moment = parts.iter().fold([0.0; 3], |sum, (m, c, _)| {
+                        linear::add_vectors(&sum, &linear::scale_vector(c, *m))
+                    });
+                    let centre = if mass != 0.0 {
+                        linear::scale_vector(&first_moment, 1.0 / mass)
+                    } else {
+                        [0.0; 3]
+                    };
+                    rules::principal_moments(&inertia_about(&centre))[0]
+                }
             };
             measured[j].mass = mass;
             measured[j].moment = measured[j].moment.max(moment);
