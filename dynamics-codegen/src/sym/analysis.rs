@@ -1,9 +1,7 @@
 //! What is computed from a finished graph: the live set of some outputs, their operation
 //! count, their value in `f64`, and a readable dump.
 
-#[cfg(test)]
-use super::InputRef;
-use super::{Graph, Node, Op};
+use super::{Graph, InputRef, Node, Op};
 use std::fmt;
 #[cfg(test)]
 use std::fmt::Write as _;
@@ -140,10 +138,11 @@ impl Graph {
     }
 
     /// The values of `outputs` in `f64`, with `input` giving each input element's value.
-    /// Only live nodes are evaluated, in the graph's order, exactly as the emitted code
-    /// would compute them for `T = f64`.
+    /// Only live nodes are evaluated, in the graph's order, as the emitted code computes
+    /// them for `T = f64` (but for its multiply-adds, fused on a CPU with FMA, and its
+    /// sines and cosines, which may differ from `f64::sin` and `f64::cos` in the last bit).
+    /// The tests' reference values, and [`crate::Compiled::evaluate`].
     #[must_use]
-    #[cfg(test)]
     pub fn eval(&self, input: impl Fn(InputRef) -> f64, outputs: &[Node]) -> Vec<f64> {
         let live = self.live(outputs);
         let ops = self.inner.borrow();
