@@ -176,3 +176,23 @@ fn issue_example_model_builds() {
     use dynamics_runtime::Mechanism;
     assert_eq!(NearTriangleEdge::model().bodies().len(), 1);
 }
+
+dynamics_runtime::mechanism! {
+    /// Kinematics only, with a massless link (a URDF link without `<inertial>`): the
+    /// compiler checks coordinates for inertia only when an output needs M(q), and
+    /// `model()` panicked, the runtime checking them always (found by `tests/fuzz.rs`).
+    pub struct MasslessKinematics;
+    outputs: [joint_placements, center_of_mass];
+    body link { mass: 0.0, shape: point }
+    body tip { mass: 1.0, shape: point }
+    joint shoulder: revolute(ground -> link) { axis: z }
+    joint elbow: revolute(link -> tip) { axis: z, at: [0.5, 0.0, 0.0] }
+    joint spin: revolute(tip -> tool) { axis: x }
+    body tool { mass: 0.0, shape: point }
+}
+
+#[test]
+fn kinematics_only_model_builds() {
+    use dynamics_runtime::Mechanism;
+    assert_eq!(MasslessKinematics::model().nv(), 3);
+}

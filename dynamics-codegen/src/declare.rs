@@ -466,6 +466,11 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
     let skip = model
         .skip_triangle_inequality
         .then(|| quote!(.skip_triangle_inequality()));
+    // Without an output that needs M(q) regular, the compiler does not check that every
+    // coordinate moves some inertia (a kinematics-only URDF may have no `<inertial>`): the
+    // runtime must not either, or `model()` would panic.
+    let allow_without_inertia =
+        (!model.outputs.any_dynamics()).then(|| quote!(.allow_coordinates_without_inertia()));
     let sources = model.source_files.iter().map(|path| {
         quote!(
             const _: &[u8] = include_bytes!(#path);
@@ -528,6 +533,7 @@ pub fn declare(model: &Model, costs: &[Cost], rt: &TokenStream) -> TokenStream {
                 #rt::ModelBuilder::new()
                     .gravity([#(#gravity),*])
                     #skip
+                    #allow_without_inertia
                     #(#bodies)*
                     #(#joints)*
                     #(#frames)*

@@ -17,7 +17,8 @@
 //! The stages are private modules; the entry points are [`expand_mechanism`] (what the
 //! `mechanism!` macro calls), [`compile`] and [`to_tokens`] (for a `build.rs` or the
 //! command-line compiler), with [`Mechanism`] the parsed declaration and [`Compiled`] the
-//! result. `docs/ARCHITECTURE.md` in the repository describes each stage.
+//! result ([`Compiled::evaluate`] evaluates one of its functions in `f64`, for tests).
+//! `docs/ARCHITECTURE.md` in the repository describes each stage.
 
 mod declare;
 mod determinacy;
@@ -90,6 +91,43 @@ impl Compiled {
                 }
             })
             .collect()
+    }
+
+    /// Evaluates the generated function `function` in `f64` without compiling it: the
+    /// values its expression graph computes from `inputs`, the arrays it takes by name
+    /// (`q`, `v`, `a`, `tau`, `p`, `loads`; others are ignored), in the order of its return
+    /// value flattened (a matrix by rows, a tuple or an array of matrices item after item).
+    /// The arithmetic is the generated code's for `T = f64` but for its multiply-adds
+    /// (one rounding on a CPU with FMA, two here) and its sines and cosines (which may
+    /// differ from `f64::sin` and `f64::cos` in the last bit).
+    ///
+    /// For tests that compare a mechanism compiled at run time (through [`compile`]) with
+    /// a reference, where building the generated code would take a `rustc` run
+    /// (`tests/fuzz.rs` in the repository).
+    ///
+    /// Returns `None` when the mechanism has no function `function`, or when an array the
+    /// function takes is missing from `inputs` or does not have the function's length for
+    /// it.
+    #[must_use]
+    pub fn evaluate(&self, function: &str, inputs: &[(&str, &[f64])]) -> Option<Vec<f64>> {
+        let f = self.functions.iter().find(|f| f.spec.name == function)?;
+        let mut arrays: Vec<(sym::Array, &[f64])> = Vec::with_capacity(f.spec.args.len());
+        for arg in &f.spec.args {
+            let &(_, values) = inputs.iter().find(|(name, _)| *name == arg.array.name())?;
+            if values.len() != arg.len {
+                return None;
+            }
+            arrays.push((arg.array, values));
+        }
+        // Every input the graph reads is an argument of the function (`FunctionSpec`).
+        let value = |r: sym::InputRef| {
+            arrays
+                .iter()
+                .find(|(array, _)| *array == r.array)
+                .and_then(|(_, values)| values.get(r.index as usize).copied())
+                .unwrap_or(f64::NAN)
+        };
+        Some(f.graph.eval(value, &f.spec.output.nodes()))
     }
 }
 
@@ -348,6 +386,56 @@ mod tests {
             "{one}"
         );
         assert!(!one.contains("kernel :: < T , true >"), "{one}");
+    }
+
+    /// `evaluate` gives the values of the generated functions, and `None` for an unknown
+    /// function or a missing or wrong-sized input.
+    #[test]
+    fn evaluate_gives_the_functions_values() {
+        let mechanism: Mechanism = syn::parse2(quote! {
+            pub struct Arm;
+            parameters: [m = 2.0];
+            outputs: [gravity, mass_matrix, kinetic_energy];
+            body upper { mass: m, com: [0.5, 0.0, 0.0], shape: point }
+            body lower { mass: 1.0, com: [0.5, 0.0, 0.0], shape: point }
+            joint shoulder: revolute(ground -> upper) { axis: y }
+            joint elbow: revolute(upper -> lower) { axis: y, at: [1.0, 0.0, 0.0] }
+        })
+        .expect("parses");
+        let compiled = compile(mechanism, Path::new(".")).expect("valid");
+        let (q, v, p) = ([0.3, -0.4], [1.5, 0.5], [3.0]);
+        let inputs: [(&str, &[f64]); 3] = [("q", &q), ("v", &v), ("p", &p)];
+        // M by rows: M₀₀ = m l₁² + m₂ (l² + l₂² + 2 l l₂ cos q₁), M₀₁ = m₂ (l₂² + l l₂ cos q₁),
+        // M₁₁ = m₂ l₂² with l₁ = l₂ = 0.5, l = 1.
+        let c = q[1].cos();
+        let m = [3.0 * 0.25 + 1.25 + c, 0.25 + 0.5 * c, 0.25 + 0.5 * c, 0.25];
+        let got = compiled
+            .evaluate("mass_matrix", &inputs)
+            .expect("generated");
+        assert_eq!(got.len(), 4);
+        for (g, e) in got.iter().zip(m) {
+            assert!((g - e).abs() < 1e-14, "{got:?} against {m:?}");
+        }
+        let energy = compiled
+            .evaluate("kinetic_energy", &inputs)
+            .expect("generated");
+        let expected = 0.5 * (m[0] * v[0] * v[0] + 2.0 * m[1] * v[0] * v[1] + m[3] * v[1] * v[1]);
+        assert!((energy[0] - expected).abs() < 1e-14, "{energy:?}");
+        // Gravity along −z, the arm along x turning about y: positive q lowers the arm
+        // (z = −l sin q), so V = −m g l sin q and g = ∂V/∂q = −m g l cos q.
+        let g = compiled.evaluate("gravity", &inputs).expect("generated");
+        let (g0, g1) = (q[0].cos(), (q[0] + q[1]).cos());
+        let expected = [
+            -9.81 * (3.0 * 0.5 * g0 + 1.0 * (g0 + 0.5 * g1)),
+            -9.81 * 0.5 * g1,
+        ];
+        assert!((g[0] - expected[0]).abs() < 1e-12 && (g[1] - expected[1]).abs() < 1e-12);
+        assert_eq!(compiled.evaluate("coriolis_matrix", &inputs), None);
+        assert_eq!(compiled.evaluate("gravity", &[("q", &q)]), None);
+        assert_eq!(
+            compiled.evaluate("gravity", &[("q", &q[..1]), ("p", &p)]),
+            None
+        );
     }
 
     /// The generated code of a declaration, pretty-printed as a runtime with `std` expands

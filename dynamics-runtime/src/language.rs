@@ -301,7 +301,9 @@
 //! literals, `pi` (or `PI`), unary minus, `+ - * /` and parentheses. An identifier other
 //! than `pi` is a parameter, which may only be multiplied or divided by a constant. A
 //! literal takes no type suffix (`300u8`, `1.1f32` and `2.0f64` are errors): the generated
-//! code is generic over its scalar type and converts every number to it.
+//! code is generic over its scalar type and converts every number to it. Every number is
+//! finite: a constant, a parameter's factor (`m / 0.0` is not) and a parameter's number at
+//! the nominal values (`1e308 * m` with m = 1e308 is not).
 //!
 //! ```rust
 //! use dynamics_runtime::mechanism;
@@ -345,6 +347,16 @@
 //! are one body, whose mass, mass centre and I_G combine theirs, and a body that alone
 //! would fail (a placeholder inertia) is accepted when the merged body passes. The type's
 //! docs note such a body.
+//!
+//! Every joint coordinate moves some inertia, or M(q) would be singular: a revolute joint's
+//! bodies (with everything they carry) have a moment of inertia about its axis, a
+//! prismatic joint's have mass, a free joint's have mass and inertia about every axis
+//! through their centre of mass, in some configuration, or the joint has `armature`. The
+//! rule applies when the mechanism asks for an output that needs M(q) (dynamics, gravity,
+//! bias, the mass and Coriolis matrices, their derivatives and inverse); a mechanism that
+//! asks only for kinematics, energies, reactions or the force analysis may move massless
+//! links (a URDF's links without `<inertial>`), and so may its `Mechanism::model()`
+//! ([`ModelBuilder::allow_coordinates_without_inertia`](crate::ModelBuilder::allow_coordinates_without_inertia)).
 //!
 //! ```rust
 //! use dynamics_runtime::{mechanism, Mechanism};

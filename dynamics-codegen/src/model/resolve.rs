@@ -13,6 +13,8 @@ use crate::syntax::{self, Axis, InertiaForm, Number, NumberValue, Rotation, Shap
 
 struct Resolver<'d> {
     names: Vec<String>,
+    /// The parameters' nominal values (0 for one whose nominal value is reported).
+    nominal: Vec<f64>,
     used: Vec<bool>,
     diagnostics: &'d mut Diagnostics,
 }
@@ -29,6 +31,15 @@ impl Resolver<'_> {
                 match self.names.iter().position(|n| n == name) {
                     Some(k) => {
                         self.used[k] = true;
+                        // Finite as a coefficient (`m / 0.0` is not) and at the nominal value
+                        // (`1e308 * m` with m = 1e308 is not), where `Mechanism::model()`
+                        // evaluates it: the runtime's `ModelBuilder` would reject it there.
+                        let value = if coefficient.is_finite() {
+                            coefficient * self.nominal[k]
+                        } else {
+                            *coefficient
+                        };
+                        rules::number_is_finite(value, number.span, self.diagnostics);
                         Value::parameter(k, *coefficient)
                     }
                     None => {
@@ -289,6 +300,16 @@ pub(crate) fn resolve(mechanism: &syntax::Mechanism, diagnostics: &mut Diagnosti
     }
     let mut r = Resolver {
         names: parameters.iter().map(|p| p.name.clone()).collect(),
+        nominal: parameters
+            .iter()
+            .map(|p| {
+                if p.nominal.is_finite() {
+                    p.nominal
+                } else {
+                    0.0
+                }
+            })
+            .collect(),
         used: vec![false; parameters.len()],
         diagnostics,
     };

@@ -1177,7 +1177,8 @@ pub(crate) struct CoordinateInertia {
     /// Total mass of the bodies the joint moves (kg); independent of the configuration.
     pub mass: f64,
     /// Revolute: the moment of inertia of those bodies about the joint axis. Free: the
-    /// smallest principal moment of their inertia about the joint origin. Prismatic: unused
+    /// smallest principal moment of their inertia about their centre of mass (the free
+    /// block of M is their spatial inertia, singular when that is). Prismatic: unused
     /// (a translation meets only the mass). In kg·m².
     pub moment: f64,
     /// How many configurations were tried.
@@ -1234,7 +1235,7 @@ pub(crate) fn coordinate_has_inertia(
         Free if negligible(measured.moment) => (
             format!(
                 "the bodies it moves (total mass {mass} kg) have a smallest principal moment of \
-                 inertia of {}",
+                 inertia about their centre of mass of {}",
                 amount(measured.moment)
             ),
             "give the bodies it moves inertia about every axis",

@@ -321,11 +321,50 @@ fn coordinate_without_mass_says_what_was_measured() {
     assert_eq!(e.len(), 1, "{e:?}");
     assert!(
         e[0].contains(
-            "(total mass 2 kg) have a smallest principal moment of inertia of 0 kg·m² in every \
-             configuration tried"
+            "(total mass 2 kg) have a smallest principal moment of inertia about their centre \
+             of mass of 0 kg·m² in every configuration tried"
         ),
         "{e:?}"
     );
+}
+
+/// A free body's rotations meet the inertia about its centre of mass, not about the joint
+/// origin: a rod off the origin spins about its own axis moving no mass, so M(q) is
+/// singular (found by `tests/fuzz.rs`; the parallel-axis term about the origin hid it).
+#[test]
+fn free_body_inertia_is_judged_about_its_centre_of_mass() {
+    let e = errors(quote! {
+        struct S;
+        body a { mass: 7.0, com: [0.03, 0.24, -0.13], shape: rod(length: 0.4, axis: y) }
+        joint float: free(ground -> a) { at: [0.4, -0.3, 0.2] }
+    });
+    assert_eq!(e.len(), 1, "{e:?}");
+    assert!(
+        e[0].contains(
+            "joint `float` has no inertia: the bodies it moves (total mass 7 kg) have a smallest \
+             principal moment of inertia about their centre of mass of"
+        ),
+        "{e:?}"
+    );
+    // Two welded rods crossing: inertia about every axis through their centre of mass.
+    assert!(errors(quote! {
+        struct S;
+        body a { mass: 7.0, com: [0.03, 0.24, -0.13], shape: rod(length: 0.4, axis: y) }
+        body b { mass: 1.0, shape: rod(length: 0.4, axis: x) }
+        joint float: free(ground -> a);
+        joint weld: fixed(a -> b) { at: [0.03, 0.24, -0.13] }
+    })
+    .is_empty());
+    // A rod carrying a point mass off its axis on a joint: the bodies the free joint moves
+    // have inertia about every axis through their centre of mass.
+    assert!(errors(quote! {
+        struct S;
+        body a { mass: 7.0, com: [0.0, 0.2, 0.0], shape: rod(length: 0.4, axis: y) }
+        body b { mass: 1.0, com: [0.1, 0.0, 0.0], shape: point }
+        joint float: free(ground -> a);
+        joint hinge: revolute(a -> b) { axis: z, at: [0.0, 0.4, 0.0] }
+    })
+    .is_empty());
 }
 
 #[test]
@@ -529,6 +568,49 @@ fn load_and_constraint_points_must_be_finite() {
     assert_eq!(
         e,
         ["this number evaluates to NaN; every number must be finite"]
+    );
+}
+
+/// A parameter's number is finite too: its coefficient (`m / 0.0`) and its value at the
+/// nominal parameters (`1e308 * m` with m = 1e308), which `Mechanism::model()` hands the
+/// runtime's `ModelBuilder`. An infinite load point got through and `model()` panicked;
+/// others were reported as a coordinate without inertia (found by `tests/fuzz.rs`).
+#[test]
+fn parameter_numbers_must_be_finite() {
+    let e = errors(quote! {
+        struct P;
+        parameters: [m = 1.0];
+        body b { mass: 1.0, com: [0.1, 0.1, 0.0], shape: point }
+        joint j: revolute(ground -> b) { axis: z }
+        load f: force on b at [m / 0.0, 0.0, 0.0];
+    });
+    assert_eq!(
+        e,
+        ["this number evaluates to inf; every number must be finite"]
+    );
+    let e = errors(quote! {
+        struct P;
+        parameters: [m = 1e308, k = 2.0];
+        body b { mass: 1.0, com: [0.1, 0.1, 0.0], inertia: diag([k * (0.0 / 0.0), 1.0, 1.0]) }
+        joint j: revolute(ground -> b) { axis: z, at: [1e308 * m, 0.0, 0.0] }
+    });
+    assert_eq!(
+        e,
+        [
+            "this number evaluates to NaN; every number must be finite",
+            "this number evaluates to inf; every number must be finite"
+        ]
+    );
+    // A non-finite nominal value is one error, not one more per use.
+    let e = errors(quote! {
+        struct P;
+        parameters: [m = 1e400];
+        body b { mass: m, com: [0.1, 0.1, 0.0], shape: point }
+        joint j: revolute(ground -> b) { axis: z }
+    });
+    assert_eq!(
+        e,
+        ["this number evaluates to inf; every number must be finite"]
     );
 }
 

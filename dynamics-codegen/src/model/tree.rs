@@ -434,10 +434,8 @@ fn check_coordinates_have_inertia(
     }
     for configuration in configurations {
         let world = poses(bodies, p, configuration);
-        for (j, (mass, inertia_about_origin)) in subtrees_about_origins(bodies, p, &world)
-            .into_iter()
-            .enumerate()
-        {
+        let subtrees = subtrees_about_origins(bodies, p, &world);
+        for (j, &(mass, first_moment, inertia_about_origin)) in subtrees.iter().enumerate() {
             let r_j = world[j].0;
             let moment = match bodies[j].joint.kind {
                 JointKind::Revolute { axis_in_joint } => {
@@ -445,7 +443,19 @@ fn check_coordinates_have_inertia(
                     linear::dot(&linear::vector_mul(&a, &inertia_about_origin), &a)
                 }
                 JointKind::Prismatic { .. } => 0.0,
-                JointKind::Free => rules::principal_moments(&inertia_about_origin)[0],
+                // A free body turns about its centre of mass (a rod spinning about its own
+                // axis moves no mass, wherever the joint origin is): the inertia about the
+                // subtree's centre of mass c, I_o − M (|c|² 1 − c cᵀ), c = h / M from o.
+                JointKind::Free => {
+                    let centre = if mass != 0.0 {
+                        linear::scale_vector(&first_moment, 1.0 / mass)
+                    } else {
+                        [0.0; 3]
+                    };
+                    let about_centre =
+                        linear::sub(&inertia_about_origin, &linear::scale(&shift(&centre), mass));
+                    rules::principal_moments(&about_centre)[0]
+                }
             };
             measured[j].mass = mass;
             measured[j].moment = measured[j].moment.max(moment);
@@ -465,8 +475,8 @@ fn check_coordinates_have_inertia(
 }
 
 /// Each tree body's subtree (the body and every body below it, with their welded parts)
-/// at the poses `world`: its mass and its inertia about the body's joint origin o_j, in
-/// world axes, Σ R I_G Rᵀ + m (|c − o_j|² 1 − (c − o_j)(c − o_j)ᵀ). Built from the leaves
+/// at the poses `world`: its mass M, its first moment h = Σ m (c − o_j) and its inertia
+/// about the body's joint origin o_j, in world axes, Σ R I_G Rᵀ + m (|c − o_j|² 1 − (c − o_j)(c − o_j)ᵀ). Built from the leaves
 /// up, each child's sums shifted from its origin to its parent's: with d = o_child − o_j
 /// and h = Σ m (c − o_child), the first moment gains M d and the inertia
 /// M (|d|² 1 − d dᵀ) + 2 (h·d) 1 − (h dᵀ + d hᵀ); linear in the number of bodies.
@@ -474,7 +484,7 @@ fn subtrees_about_origins(
     bodies: &[Body],
     p: &[f64],
     world: &[(Matrix3, Vector3)],
-) -> Vec<(f64, Matrix3)> {
+) -> Vec<(f64, Vector3, Matrix3)> {
     // (mass, first moment about the body's origin, inertia about it), world axes.
     let mut sums: Vec<(f64, Vector3, Matrix3)> = Vec::with_capacity(bodies.len());
     for (k, body) in bodies.iter().enumerate() {
@@ -513,7 +523,7 @@ fn subtrees_about_origins(
         );
         into.2 = linear::add(&into.2, &gained);
     }
-    sums.into_iter().map(|(m, _, i)| (m, i)).collect()
+    sums
 }
 
 /// |x|² 1 − x xᵀ: the parallel-axis term of a unit mass at x.

@@ -138,9 +138,11 @@ impl Graph {
     }
 
     /// The values of `outputs` in `f64`, with `input` giving each input element's value.
-    /// Only live nodes are evaluated, in the graph's order, exactly as the emitted code
-    /// would compute them for `T = f64` (the tests, and the compile-time rank checks of
-    /// the force analysis and the loop closures).
+    /// Only live nodes are evaluated, in the graph's order, as the emitted code computes
+    /// them for `T = f64` (but for its multiply-adds, fused on a CPU with FMA, and its
+    /// sines and cosines, which may differ from `f64::sin` and `f64::cos` in the last bit):
+    /// the tests' reference values, the compile-time rank checks of the force analysis and
+    /// the loop closures, and [`crate::Compiled::evaluate`].
     #[must_use]
     pub fn eval(&self, input: impl Fn(InputRef) -> f64, outputs: &[Node]) -> Vec<f64> {
         let live = self.live(outputs);

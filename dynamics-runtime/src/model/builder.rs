@@ -280,6 +280,7 @@ pub struct ModelBuilder {
     loads: Vec<LoadSpec>,
     gravity_in_world: [f64; 3],
     skip_triangle_inequality: bool,
+    allow_coordinates_without_inertia: bool,
 }
 
 impl ModelBuilder {
@@ -328,6 +329,18 @@ impl ModelBuilder {
         self
     }
 
+    /// Accepts joints that move no mass, no inertia and have no armature (with everything
+    /// their bodies carry), which make M(q) singular: for a mechanism used for its
+    /// kinematics (poses, Jacobians, velocities), energies or reactions only, whose links
+    /// may be massless (a URDF without `<inertial>`). The model's forward dynamics is then
+    /// undefined. The generated `Mechanism::model()` of a mechanism that asks for no
+    /// output needing M(q) builds its model so, as the compiler checks such a mechanism's
+    /// coordinates only when it asks for one.
+    pub fn allow_coordinates_without_inertia(mut self) -> Self {
+        self.allow_coordinates_without_inertia = true;
+        self
+    }
+
     /// Validates the declaration and builds the model, or returns every error found.
     pub fn build(self) -> Result<Model, ModelErrors> {
         let mut errors = Vec::new();
@@ -338,7 +351,9 @@ impl ModelBuilder {
         match tree {
             Some(order) if errors.is_empty() => {
                 let model = self.assemble(&order);
-                check_massless_subtrees(&model, &mut errors);
+                if !self.allow_coordinates_without_inertia {
+                    check_massless_subtrees(&model, &mut errors);
+                }
                 if errors.is_empty() {
                     Ok(model)
                 } else {

@@ -475,6 +475,23 @@ fn massless_subtree() {
     assert!(m.contains("zero mass and zero inertia"), "{m}");
 }
 
+/// A mechanism used for its kinematics only may have massless coordinates.
+#[test]
+fn massless_subtree_allowed_for_kinematics() {
+    let model = ModelBuilder::new()
+        .body(BodySpec::new("frame", Inertia::zero()))
+        .joint(JointSpec::revolute(
+            "spin",
+            GROUND,
+            "frame",
+            [0.0, 0.0, 1.0],
+        ))
+        .allow_coordinates_without_inertia()
+        .build()
+        .expect("allowed");
+    assert_eq!(model.nv(), 1);
+}
+
 #[test]
 fn errors_are_collected() {
     let errors = ModelBuilder::new()
