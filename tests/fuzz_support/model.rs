@@ -231,6 +231,10 @@ fn eval(expr: &Expr, parameters: &[f64]) -> Result<Value, String> {
                     Value::Joint(j.with_armature(number(next()?)?))
                 }
                 (Value::Joint(j), "with_damping") => Value::Joint(j.with_damping(number(next()?)?)),
+                (Value::Joint(j), "with_child_frame") => {
+                    let (t, r) = (vector(next()?)?, matrix(next()?)?);
+                    Value::Joint(j.with_child_frame(t, r))
+                }
                 (Value::Frame(f), "placed") => {
                     let (t, r) = (vector(next()?)?, matrix(next()?)?);
                     Value::Frame(f.placed(t, r))

@@ -115,31 +115,7 @@ fn greedy<S>(
 /// search from the outputs that visits only those nodes (the graph holds every candidate
 /// that a regrouping tried).
 pub(crate) fn arithmetic_cost(g: &Graph, outputs: &[Node]) -> (usize, usize) {
-    let mut seen = vec![false; g.len()];
-    let mut stack: Vec<Node> = Vec::new();
-    for &node in outputs {
-        if !std::mem::replace(&mut seen[node.index()], true) {
-            stack.push(node);
-        }
-    }
-    let (mut ops, mut adds) = (0, 0);
-    while let Some(node) = stack.pop() {
-        let op = g.op(node);
-        match op {
-            Op::Add(..) | Op::Sub(..) => {
-                ops += 1;
-                adds += 1;
-            }
-            Op::Mul(..) => ops += 1,
-            _ => {}
-        }
-        for child in op.children() {
-            if !std::mem::replace(&mut seen[child.index()], true) {
-                stack.push(child);
-            }
-        }
-    }
-    (ops, adds)
+    cost_above(g, outputs, |_| false)
 }
 
 /// The inertias that make the joint forces τ of `sweep` (a Newton–Euler sweep over
