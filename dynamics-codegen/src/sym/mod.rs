@@ -341,6 +341,7 @@ impl Graph {
     }
 
     /// The number of nodes (live or not).
+    #[cfg(test)]
     #[must_use]
     pub fn len(&self) -> usize {
         self.inner.borrow().ops.len()
