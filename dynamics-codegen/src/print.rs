@@ -161,7 +161,7 @@ pub(crate) fn function(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> Token
     let docs = doc_attrs(&spec.doc, &count);
 
     let read_by_output = |array: Array| {
-        plan.pieces.len() > 1
+        plan.hands_back
             && plan
                 .output_leaves
                 .iter()
@@ -278,7 +278,7 @@ impl Plan {
         stmts.extend(piece.leaves.iter().map(|&n| let_node(n, ops[n.index()])));
         stmts.extend(piece.steps.iter().map(|s| let_step(s, ops, &self.fused)));
 
-        let result = if self.pieces.len() == 1 {
+        let result = if self.returns_output(p) {
             output.expr()
         } else {
             let carry = self.pieces.get(p + 1).map(|next| {
@@ -298,9 +298,19 @@ impl Plan {
         quote!(#(#stmts)* #result)
     }
 
-    /// What piece `p` of a split function returns (see [`Plan::piece_body`]): the next
-    /// piece's carry and the outputs it computes, each `[T; K]`, as a pair when it has both.
-    fn piece_return_type(&self, p: usize) -> TokenStream {
+    /// Whether piece `p` returns the function's output: the last piece, unless the pieces
+    /// hand their outputs back ([`Plan::hands_back`]).
+    fn returns_output(&self, p: usize) -> bool {
+        !self.hands_back && p + 1 == self.pieces.len()
+    }
+
+    /// What piece `p` of a split function returns (see [`Plan::piece_body`]): the output
+    /// ([`Plan::returns_output`]), or the next piece's carry and the outputs it computes,
+    /// each `[T; K]`, as a pair when it has both.
+    fn piece_return_type(&self, p: usize, spec: &FunctionSpec) -> TokenStream {
+        if self.returns_output(p) {
+            return spec.output.ty();
+        }
         let array = |k: usize| {
             let k = Literal::usize_unsuffixed(k);
             quote!([T; #k])
@@ -371,7 +381,7 @@ impl Plan {
                 params.push(quote!(carry: &[T; #k]));
                 args.push(quote!(&#carry));
             }
-            let ret = self.piece_return_type(p);
+            let ret = self.piece_return_type(p, spec);
             let doc = format!(" Piece {} of {n}.", p + 1);
             let run = if spec.dispatch {
                 let body = self.piece_body(ops, p, &spec.output);
@@ -401,8 +411,15 @@ impl Plan {
                 });
                 quote!(#part(#(#args),*))
             };
-            let pattern = self.piece_result_pattern(p);
-            calls.push(quote!(let #pattern = #run;));
+            if self.returns_output(p) {
+                calls.push(run);
+            } else {
+                let pattern = self.piece_result_pattern(p);
+                calls.push(quote!(let #pattern = #run;));
+            }
+        }
+        if !self.hands_back {
+            return quote!(#(#fns)* #(#calls)*);
         }
         let leaves = self
             .output_leaves
@@ -965,8 +982,47 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
         assert!(!text.contains(&format!("fn part_{}", pieces + 1)));
         assert_eq!(text.matches("T::run_piece(").count(), pieces, "{text}");
         assert!(text.contains("let [v"), "later pieces unpack their carry");
-        // Piece 1 computes the output xs[3] and hands it back with its carry; the last piece
-        // computes xs[n - 1]; the leaf outputs (v[1], 2.5) are the emitted function's own.
+        assert!(text.contains("let carry_1 = T::run_piece("), "{text}");
+        assert!(text.contains("|| part_1::<T, true>(q, v),"), "{text}");
+        assert!(text.contains("|| part_1::<T, false>(q, v),"), "{text}");
+        assert!(text.contains(&format!(
+            "|| part_{pieces}::<T, false>(v, &carry_{}),",
+            pieces - 1
+        )));
+        syn::parse_str::<syn::File>(&text).expect("pretty text parses again");
+
+        s.dispatch = false; // one copy: the pieces as functions of their own, called in turn
+        let one = pretty(emit_function(&g, &s));
+        assert_eq!(one.matches("#[inline(never)]").count(), pieces, "{one}");
+        assert!(one.contains("fn part_1<T: Scalar>("), "{one}");
+        assert!(one.contains("let carry_1 = part_1(q, v);"), "{one}");
+        assert!(!one.contains("run_piece"), "{one}");
+
+        s.split_threshold = statements; // exactly at the threshold: not split
+        assert!(!pretty(emit_function(&g, &s)).contains("fn part_"));
+        s.split_threshold = statements - 1;
+        assert!(pretty(emit_function(&g, &s)).contains("fn part_2"));
+    }
+
+    /// Cut into more than `HAND_BACK_ABOVE_PIECES` pieces, each piece hands back the outputs
+    /// it computes and the emitted function builds the output; none is carried.
+    #[test]
+    fn many_pieces_hand_their_outputs_back() {
+        let g = Graph::new();
+        let outputs = long_chain(&g, 200);
+        let mut s = spec(
+            "chain",
+            &[(Array::Q, 8), (Array::V, 3)],
+            Output::Vector(outputs.clone()),
+        );
+        s.split_threshold = 100;
+        let text = pretty(emit_function(&g, &s));
+        let pieces = text.matches("T::run_piece(").count();
+        assert!(
+            pieces > crate::schedule::HAND_BACK_ABOVE_PIECES,
+            "{pieces} pieces"
+        );
+        // xs[3] (early), xs[n / 2], xs[n - 1] (last piece), then v[1] and 2.5, leaves.
         let [last, middle, early, ..] = outputs[..] else {
             unreachable!()
         };
@@ -978,41 +1034,23 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
             text.contains(&format!("let [{last}] = T::run_piece(")),
             "{text}"
         );
-        assert!(text.contains("|| part_1::<T, true>(q, v),"), "{text}");
-        assert!(text.contains("|| part_1::<T, false>(q, v),"), "{text}");
-        assert!(text.contains(&format!(
-            "|| part_{pieces}::<T, false>(&carry_{}),",
-            pieces - 1
-        )));
         assert!(text.contains("let v1 = v[1];"), "{text}");
         assert!(
             text.contains(&format!("[{last}, {middle}, {early}, v1, v")),
             "{text}"
         );
-        // An output is handed back once, by the piece that computes it: no carry holds it
-        // (only xs[n / 2] might be read later, by the next element of the chain).
-        let carried = |name: &str| {
-            text.lines()
-                .filter(|l| l.contains("= *carry;") && l.contains(&format!("{name},")))
-                .count()
-        };
-        assert_eq!(carried(&early.to_string()), 0, "{text}");
+        let carried = text
+            .lines()
+            .filter(|l| l.contains("= *carry;") && l.contains(&format!("{early},")))
+            .count();
+        assert_eq!(carried, 0, "an output handed back is not carried: {text}");
         syn::parse_str::<syn::File>(&text).expect("pretty text parses again");
-
-        s.dispatch = false; // one copy: the pieces as functions of their own, called in turn
+        s.dispatch = false;
         let one = pretty(emit_function(&g, &s));
-        assert_eq!(one.matches("#[inline(never)]").count(), pieces, "{one}");
-        assert!(one.contains("fn part_1<T: Scalar>("), "{one}");
         assert!(
             one.contains(&format!("let (carry_1, [{early}]) = part_1(q, v);")),
             "{one}"
         );
-        assert!(!one.contains("run_piece"), "{one}");
-
-        s.split_threshold = statements; // exactly at the threshold: not split
-        assert!(!pretty(emit_function(&g, &s)).contains("fn part_"));
-        s.split_threshold = statements - 1;
-        assert!(pretty(emit_function(&g, &s)).contains("fn part_2"));
     }
 
     /// `Scalar` as the runtime defines it, reduced to what generated code uses.

@@ -36,16 +36,19 @@
 //! ```
 //!
 //! The values crossing the boundary before piece `k + 1` — computed in piece `k` or
-//! earlier, used by a statement of piece `k + 1` or later — travel in one array
-//! `carry_k: [T; K]`, in id order, passed by reference. A piece returns the values crossing
-//! the next boundary (those it computes and those it passes through from its own `carry`)
-//! and, as a second array, the outputs it computes ([`Piece::outputs`]), which the emitted
-//! function binds to their names: an output is handed back once, by the piece that
-//! computes it, rather than carried through every later piece (which made the emitted
-//! code grow as the number of outputs times the number of pieces). Constants and inputs
-//! are never carried: each piece re-reads the inputs and re-creates the constants it uses
-//! (both are free); the outputs that are leaves are created by the emitted function. It
-//! then returns the output built from those names.
+//! earlier, used by a statement of piece `k + 1` or later or as an output — travel in one
+//! array `carry_k: [T; K]`, in id order, passed by reference. A piece returns the values
+//! crossing the next boundary: those it computes and those it passes through from its own
+//! `carry`; the last piece returns the function's output. Constants and inputs are never
+//! carried: each piece re-reads the inputs and re-creates the constants it uses (both are
+//! free).
+//!
+//! A function cut into more than [`HAND_BACK_ABOVE_PIECES`] pieces does not carry its
+//! outputs: each piece returns, as a second array, the outputs it computes
+//! ([`Piece::outputs`]), which the emitted function binds to their names, creates the
+//! outputs that are leaves, and returns the output built from those names. Carried, an
+//! output computed early crosses every later boundary, and the code grows as the number of
+//! outputs times the number of pieces.
 
 use crate::ir::{Arg, FunctionSpec};
 use crate::passes::fusion::Fused;
@@ -98,7 +101,7 @@ pub(crate) struct Piece {
     pub arrays: BTreeSet<Array>,
     pub carry_in: Vec<Node>,
     /// The outputs this piece computes, in id order, handed back to the emitted function
-    /// (split functions only).
+    /// ([`Plan::hands_back`] only).
     pub outputs: Vec<Node>,
 }
 
@@ -109,10 +112,23 @@ pub(crate) struct Plan {
     /// The sums and differences that take a product in
     /// ([`crate::passes::fusion::fusions`]).
     pub fused: HashMap<Node, Fused>,
-    /// The outputs that are leaves (inputs and constants), in id order: read by the single
-    /// piece of a function that is not split, by the emitted function itself otherwise.
+    /// Whether the pieces hand their outputs back to the emitted function (more than
+    /// [`HAND_BACK_ABOVE_PIECES`] pieces) rather than carry them to the last piece, which
+    /// then returns the output.
+    pub hands_back: bool,
+    /// The outputs that are leaves (inputs and constants), in id order: read by the last
+    /// piece, or by the emitted function itself when the pieces hand their outputs back.
     pub output_leaves: BTreeSet<Node>,
 }
+
+/// The most pieces whose outputs are carried to the last piece; a function cut into more
+/// hands each output back from the piece that computes it. Carrying costs a copy per
+/// boundary crossed, so it grows as outputs times pieces (a 200-joint chain's Coriolis
+/// matrix, 240 pieces: 181 MB of Rust for its default outputs, 68 MB handed back); for a
+/// few pieces it is the faster shape: handing back made the quadruped's 6-piece ∂q̈ 13 %
+/// slower (3.30 → 3.75 µs) and the Panda's 3-piece one 8 % faster (1.17 → 1.08 µs), two
+/// alternating runs of `cargo bench -p models --bench dynamics` each.
+pub(crate) const HAND_BACK_ABOVE_PIECES: usize = 8;
 
 impl Plan {
     /// The statements of the function `spec` describes over `graph`, with the products
@@ -178,18 +194,19 @@ impl Plan {
                 }
             }
         }
-        let split = pieces.len() > 1;
+        let hands_back = pieces.len() > HAND_BACK_ABOVE_PIECES;
         let mut output_leaves = BTreeSet::new();
         for &out in outputs {
             if ops[out.index()].is_leaf() {
                 output_leaves.insert(out);
-            } else if split {
+            } else if hands_back {
                 pieces[defined_in[&out]].outputs.push(out);
             } else {
+                // Carried to the last piece, which returns the output.
                 last_use.insert(out, last);
             }
         }
-        if !split {
+        if !hands_back {
             pieces[last].leaves.extend(output_leaves.iter().copied());
         }
         // Each value crosses the boundaries from its piece to its last reader's.
@@ -215,6 +232,7 @@ impl Plan {
         Plan {
             pieces,
             fused,
+            hands_back,
             output_leaves,
         }
     }
