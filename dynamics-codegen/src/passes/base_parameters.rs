@@ -134,8 +134,21 @@ pub(crate) fn regroup_sweep(
     sweep: &rnea::Sweep,
 ) -> (Backward, Vec<BodyInertia>) {
     if model.bodies.len() > EXACT_SWEEP_BODIES {
-        return regroup_sweep_windowed(g, model, transforms, inputs, inertias, sweep);
+        regroup_sweep_windowed(g, model, transforms, inputs, inertias, sweep)
+    } else {
+        regroup_sweep_whole(g, model, transforms, inputs, inertias, sweep)
     }
+}
+
+/// [`regroup_sweep`] judging each candidate by the whole τ.
+fn regroup_sweep_whole(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    inputs: &SweepInputs,
+    inertias: &[BodyInertia],
+    sweep: &rnea::Sweep,
+) -> (Backward, Vec<BodyInertia>) {
     greedy(
         g,
         model,
@@ -500,22 +513,9 @@ mod tests {
                 loads: false,
             };
             let sweep = rnea::sweep(&g, &model, &t, &i, &inputs);
-            let whole = greedy(
-                &g,
-                &model,
-                &i,
-                sweep.backward.clone(),
-                |backward| arithmetic_cost(&g, &backward.tau),
-                |backward, candidate, changed| {
-                    let changes: Vec<(usize, (Vec3, Vec3))> = changed
-                        .iter()
-                        .map(|&k| (k, sweep.own(&g, k, &candidate[k])))
-                        .collect();
-                    backward.with(&g, &model, &t, &inputs, &changes)
-                },
-            )
-            .0
-            .tau;
+            let whole = regroup_sweep_whole(&g, &model, &t, &inputs, &i, &sweep)
+                .0
+                .tau;
             let windowed = regroup_sweep_windowed(&g, &model, &t, &inputs, &i, &sweep)
                 .0
                 .tau;
