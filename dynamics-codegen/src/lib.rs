@@ -174,25 +174,28 @@ pub fn compile(mut mechanism: Mechanism, manifest_dir: &Path) -> syn::Result<Com
 /// output name that asked for it, or at the mechanism's name when the outputs are the
 /// default ones.
 fn too_large_error(mechanism: &Mechanism, function: &str) -> syn::Error {
-    let asked_by = |name: &str| {
-        let canonical = model::Outputs::ALIASES
-            .iter()
-            .find(|(alias, _)| *alias == name)
-            .map_or(name, |(_, full)| *full);
-        canonical == function
-            || (function == "potential_energy" && canonical == "kinetic_energy")
-            || (function.starts_with("constraint_") && canonical == "constraint_residual")
+    // The output name whose flag is the function's (`energy` asks for `potential_energy`,
+    // `constraints` for `constraint_jacobian`, ...).
+    let flag = |name: &str| {
+        let mut outputs = model::Outputs::default();
+        outputs.enable(name).then_some(outputs)
     };
     let span = mechanism
         .outputs
         .iter()
         .flatten()
-        .find(|name| asked_by(&name.text))
+        .find(|name| flag(&name.text).is_some() && flag(&name.text) == flag(function))
         .map_or(mechanism.name.span(), |name| name.span);
     syn::Error::new(
         span,
         format!(
-            "`{function}` is too large to generate for this mechanism: its expansion passed              {} nodes, the most one function may take (the time and memory of the              expansion, and rustc's, grow with it). Leave `{function}` out of `outputs: [..]`;              the functions of linear size (`inverse_dynamics`, `forward_dynamics`, `gravity`,              `bias`, the kinematics of single frames) stay within the limit on far larger              mechanisms than the quadratic ones (mass matrix, Coriolis matrix, M⁻¹, Jacobians,              derivatives)",
+            "`{function}` is too large to generate for this mechanism: its expansion passed \
+             {} nodes, the most one function may take (the time and memory of the \
+             expansion, and rustc's, grow with it). Leave `{function}` out of `outputs: [..]`; \
+             the functions of linear size (`inverse_dynamics`, `forward_dynamics`, `gravity`, \
+             `bias`, the kinematics of single frames) stay within the limit on far larger \
+             mechanisms than the quadratic ones (mass matrix, Coriolis matrix, M⁻¹, Jacobians, \
+             derivatives)",
             sym::NODE_BUDGET
         ),
     )
@@ -332,7 +335,8 @@ mod tests {
             let message = error.to_string();
             assert!(
                 message.contains("`mass_matrix_inverse` is too large to generate")
-                    && message.contains("Leave `mass_matrix_inverse` out of `outputs: [..]`"),
+                    && message.contains("Leave `mass_matrix_inverse` out of `outputs: [..]`")
+                    && !message.contains("  "),
                 "{message}"
             );
             assert_eq!(error.into_iter().count(), 1, "one error, for M⁻¹ alone");
