@@ -113,6 +113,12 @@ pub(crate) fn outer(a: &Vector3, b: &Vector3) -> Matrix3 {
     std::array::from_fn(|i| std::array::from_fn(|j| a[i] * b[j]))
 }
 
+/// `|x|² 1 − x xᵀ`: the parallel-axis term of a unit mass at `x`, whose inertia about the
+/// origin it is (−x̂²).
+pub(crate) fn parallel_axis(x: &Vector3) -> Matrix3 {
+    sub(&scale(&IDENTITY, norm_squared(x)), &outer(x, x))
+}
+
 /// `R a Rᵀ`, computed as `(R a) Rᵀ`.
 pub(crate) fn rotate(r: &Matrix3, a: &Matrix3) -> Matrix3 {
     mul(&mul(r, a), &transpose(r))

@@ -676,10 +676,7 @@ pub(crate) fn merged_inertia(parts: &[(f64, [f64; 3], Matrix3)]) -> Matrix3 {
     };
     parts.iter().fold(linear::ZERO, |sum, (m, c, i)| {
         let d = linear::sub_vectors(c, &com);
-        let shift = linear::sub(
-            &linear::scale(&linear::IDENTITY, linear::norm_squared(&d)),
-            &linear::outer(&d, &d),
-        );
+        let shift = linear::parallel_axis(&d);
         linear::add(&sum, &linear::add(i, &linear::scale(&shift, *m)))
     })
 }

@@ -129,27 +129,26 @@ pub(crate) fn build(
         // standard DH row's C = Tx(a) Rx(α) (see `super::dh`). Everything declared in the
         // child's frame reaches the tree through this placement, as a welded body's does;
         // its own mass centre and inertia are carried here.
-        let (com_in_body, inertia_com_in_body) = match &joint.child_frame {
-            Some(c) => {
-                attached[child] = Some(Attachment {
-                    body: Some(bodies.len()),
-                    rotation: c.rotation,
-                    translation: c.translation.clone(),
-                });
-                (
+        let (frame_rotation, frame_translation, com_in_body, inertia_com_in_body) =
+            match &joint.child_frame {
+                Some(c) => (
+                    c.rotation,
+                    c.translation.clone(),
                     c.point(&declared.com),
                     value::rotate_matrix(&c.rotation, &declared.inertia),
-                )
-            }
-            None => {
-                attached[child] = Some(Attachment {
-                    body: Some(bodies.len()),
-                    rotation: IDENTITY,
-                    translation: zero3(),
-                });
-                (declared.com.clone(), declared.inertia.clone())
-            }
-        };
+                ),
+                None => (
+                    IDENTITY,
+                    zero3(),
+                    declared.com.clone(),
+                    declared.inertia.clone(),
+                ),
+            };
+        attached[child] = Some(Attachment {
+            body: Some(bodies.len()),
+            rotation: frame_rotation,
+            translation: frame_translation,
+        });
         bodies.push(Body {
             name: declared.name.text.clone(),
             docs: declared.docs.clone(),
@@ -452,8 +451,10 @@ fn check_coordinates_have_inertia(
                     } else {
                         [0.0; 3]
                     };
-                    let about_centre =
-                        linear::sub(&inertia_about_origin, &linear::scale(&shift(&centre), mass));
+                    let about_centre = linear::sub(
+                        &inertia_about_origin,
+                        &linear::scale(&linear::parallel_axis(&centre), mass),
+                    );
                     rules::principal_moments(&about_centre)[0]
                 }
             };
@@ -476,9 +477,10 @@ fn check_coordinates_have_inertia(
 
 /// Each tree body's subtree (the body and every body below it, with their welded parts)
 /// at the poses `world`: its mass M, its first moment h = Σ m (c − o_j) and its inertia
-/// about the body's joint origin o_j, in world axes, Σ R I_G Rᵀ + m (|c − o_j|² 1 − (c − o_j)(c − o_j)ᵀ). Built from the leaves
-/// up, each child's sums shifted from its origin to its parent's: with d = o_child − o_j
-/// and h = Σ m (c − o_child), the first moment gains M d and the inertia
+/// about the body's joint origin o_j, in world axes,
+/// Σ R I_G Rᵀ + m (|c − o_j|² 1 − (c − o_j)(c − o_j)ᵀ). Built from the leaves up, each
+/// child's sums shifted from its origin to its parent's: with d = o_child − o_j and
+/// h = Σ m (c − o_child), the first moment gains M d and the inertia
 /// M (|d|² 1 − d dᵀ) + 2 (h·d) 1 − (h dᵀ + d hᵀ); linear in the number of bodies.
 fn subtrees_about_origins(
     bodies: &[Body],
@@ -497,7 +499,10 @@ fn subtrees_about_origins(
             let i_g = linear::rotate(&r_k, &rules::nominal_matrix(&part.inertia_com_in_body, p));
             sum.0 += m;
             sum.1 = linear::add_vectors(&sum.1, &linear::scale_vector(&c, m));
-            sum.2 = linear::add(&sum.2, &linear::add(&i_g, &linear::scale(&shift(&c), m)));
+            sum.2 = linear::add(
+                &sum.2,
+                &linear::add(&i_g, &linear::scale(&linear::parallel_axis(&c), m)),
+            );
         }
         sums.push(sum);
     }
@@ -513,7 +518,10 @@ fn subtrees_about_origins(
         );
         let gained = linear::add(
             &inertia,
-            &linear::add(&linear::scale(&shift(&d), mass), &cross_terms),
+            &linear::add(
+                &linear::scale(&linear::parallel_axis(&d), mass),
+                &cross_terms,
+            ),
         );
         let into = &mut sums[parent];
         into.0 += mass;
@@ -524,12 +532,4 @@ fn subtrees_about_origins(
         into.2 = linear::add(&into.2, &gained);
     }
     sums
-}
-
-/// |x|² 1 − x xᵀ: the parallel-axis term of a unit mass at x.
-fn shift(x: &Vector3) -> Matrix3 {
-    linear::sub(
-        &linear::scale(&linear::IDENTITY, linear::norm_squared(x)),
-        &linear::outer(x, x),
-    )
 }
