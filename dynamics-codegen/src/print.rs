@@ -259,6 +259,16 @@ fn doc_attrs(doc: &str, count: &OpCount) -> Vec<TokenStream> {
     lines.iter().map(|l| quote!(#[doc = #l])).collect()
 }
 
+/// What a piece returns (a value, its type, or the pattern binding it): the next piece's
+/// carry and the outputs it hands back, a pair when there are both.
+fn carry_and_outputs(carry: Option<TokenStream>, outputs: Option<TokenStream>) -> TokenStream {
+    match (carry, outputs) {
+        (Some(carry), Some(outputs)) => quote!((#carry, #outputs)),
+        (Some(one), None) | (None, Some(one)) => one,
+        (None, None) => quote!(()),
+    }
+}
+
 /// The variable holding `node`'s value.
 fn var(node: Node) -> Ident {
     format_ident!("{}", node.to_string())
@@ -289,11 +299,7 @@ impl Plan {
                 let names = piece.outputs.iter().map(|&n| var(n));
                 quote!([#(#names),*])
             });
-            match (carry, outputs) {
-                (Some(carry), Some(outputs)) => quote!((#carry, #outputs)),
-                (Some(one), None) | (None, Some(one)) => one,
-                (None, None) => quote!(()),
-            }
+            carry_and_outputs(carry, outputs)
         };
         quote!(#(#stmts)* #result)
     }
@@ -321,11 +327,7 @@ impl Plan {
             .map(|next| array(next.carry_in.len()));
         let outputs = self.pieces[p].outputs.len();
         let outputs = (outputs > 0).then(|| array(outputs));
-        match (carry, outputs) {
-            (Some(carry), Some(outputs)) => quote!((#carry, #outputs)),
-            (Some(one), None) | (None, Some(one)) => one,
-            (None, None) => quote!(()),
-        }
+        carry_and_outputs(carry, outputs)
     }
 
     /// The pattern that binds what piece `p` returns in the emitted function: `carry_{p+1}`
@@ -340,11 +342,7 @@ impl Plan {
             let names = outputs.iter().map(|&n| var(n));
             quote!([#(#names),*])
         });
-        match (carry, outputs) {
-            (Some(carry), Some(outputs)) => quote!((#carry, #outputs)),
-            (Some(one), None) | (None, Some(one)) => one,
-            (None, None) => quote!(()),
-        }
+        carry_and_outputs(carry, outputs)
     }
 
     /// [`Plan::piece_body`] as the baseline copy alone: after `const WIDE: bool = false;`
