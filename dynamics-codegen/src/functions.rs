@@ -538,11 +538,11 @@ fn forward_dynamics_derivatives_by_chain_rule(
     let m = regrouped_mass_matrix(g, model, t, i);
     let solved = |with: With| {
         let rows = derivatives::jacobian(g, model, &tau, with);
+        let width = rows.first().map_or(0, Vec::len);
         let flat: Vec<Node> = rows.into_iter().flatten().collect();
         let at_qdd = g.substitute(&flat, |r| {
             (r.array == Array::A).then(|| qdd[r.index as usize])
         });
-        let width = rows_width(&at_qdd, nv);
         let columns: Vec<Vec<Node>> = (0..width)
             .map(|c| {
                 let rhs = (0..nv).map(|r| g.neg(at_qdd[r * width + c])).collect();
@@ -556,11 +556,6 @@ fn forward_dynamics_derivatives_by_chain_rule(
         )
     };
     Output::Tuple(derivative_inputs(model).into_iter().map(solved).collect())
-}
-
-/// The number of columns of `nv` rows stored one after the other in `flat`.
-fn rows_width(flat: &[Node], nv: usize) -> usize {
-    flat.len().checked_div(nv).unwrap_or(0)
 }
 
 fn mass_matrix_inverse(model: &Model) -> Expanded {
