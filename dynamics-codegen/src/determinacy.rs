@@ -54,14 +54,18 @@ pub(crate) fn check(mechanism: &syntax::Mechanism, model: &Model) -> syn::Result
     };
     let configurations = configurations(model);
     let mut d = Diagnostics::default();
+    let (g, transforms, _) = expand::fresh_graph(model);
+    let a = statics::balance_matrix(&g, model, statics, &transforms);
     let balance = Sampled::new(
-        balance_matrices(model, statics, &configurations),
+        evaluate(&g, &a, model, &configurations),
         statics.unknowns.len(),
         Full::Columns,
     );
     let closure = (statics.closure_count() > 0).then(|| {
+        let phi = statics::closure_residual(&g, model, statics, &transforms);
+        let jacobian = statics::closure_jacobian(&g, model, &phi);
         Sampled::new(
-            closure_jacobians(model, statics, &configurations),
+            evaluate(&g, &jacobian, model, &configurations),
             model.nv,
             Full::Rows,
         )
@@ -337,29 +341,6 @@ fn evaluate(
             }
         })
         .collect()
-}
-
-/// A(q) at each configuration.
-fn balance_matrices(
-    model: &Model,
-    statics: &Statics,
-    configurations: &[Vec<f64>],
-) -> Vec<Vec<Vec<f64>>> {
-    let (g, transforms, _) = expand::fresh_graph(model);
-    let a = statics::balance_matrix(&g, model, statics, &transforms);
-    evaluate(&g, &a, model, configurations)
-}
-
-/// Φ_q at each configuration.
-fn closure_jacobians(
-    model: &Model,
-    statics: &Statics,
-    configurations: &[Vec<f64>],
-) -> Vec<Vec<Vec<f64>>> {
-    let (g, transforms, _) = expand::fresh_graph(model);
-    let phi = statics::closure_residual(&g, model, statics, &transforms);
-    let jacobian = statics::closure_jacobian(&g, model, &phi);
-    evaluate(&g, &jacobian, model, configurations)
 }
 
 /// `a`, `b` and `c`, each in backticks.
