@@ -133,14 +133,20 @@ fn timed<R>(f: impl FnOnce() -> R) -> R {
     result
 }
 
+/// τ = S u: the controls on the actuated coordinates, zero on the others.
+fn torques<P: Plant>(u: &DVector<f64>) -> Vec<f64> {
+    let mut tau = vec![0.0; P::NV];
+    for (k, &coordinate) in P::ACTUATED.iter().enumerate() {
+        tau[coordinate] = u[k];
+    }
+    tau
+}
+
 /// Semi-implicit Euler over a [`Plant`], x = [q; v], τ = S u.
 fn euler_step<P: Plant>(h: f64, x: &DVector<f64>, u: &DVector<f64>) -> DVector<f64> {
     let n = P::NV;
     let (q, v) = (x.rows(0, n), x.rows(n, n));
-    let mut tau = vec![0.0; n];
-    for (k, &coordinate) in P::ACTUATED.iter().enumerate() {
-        tau[coordinate] = u[k];
-    }
+    let tau = torques::<P>(u);
     let qdd = timed(|| P::forward_dynamics(q.as_slice(), v.as_slice(), &tau));
     let v_next = DVector::from_fn(n, |i, _| v[i] + h * qdd[i]);
     let q_next = DVector::from_fn(n, |i, _| q[i] + h * v_next[i]);
@@ -158,10 +164,7 @@ fn euler_jacobians<P: Plant>(
 ) -> (DMatrix<f64>, DMatrix<f64>) {
     let (n, m) = (P::NV, P::ACTUATED.len());
     let (q, v) = (x.rows(0, n), x.rows(n, n));
-    let mut tau = vec![0.0; n];
-    for (k, &coordinate) in P::ACTUATED.iter().enumerate() {
-        tau[coordinate] = u[k];
-    }
+    let tau = torques::<P>(u);
     let [by_q, by_v, m_inverse] = timed(|| P::derivatives(q.as_slice(), v.as_slice(), &tau));
     let selection = DMatrix::from_fn(n, m, |i, k| f64::from(u8::from(P::ACTUATED[k] == i)));
     // Rows of v⁺, then q⁺ = q + h v⁺.
