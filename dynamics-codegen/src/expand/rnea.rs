@@ -254,16 +254,25 @@ impl Backward {
     ) {
         let children = children_in_decreasing_order(model);
         for i in (0..self.own.len()).rev().filter(|&i| dirty[i]) {
-            let mut total = self.own[i];
-            for &c in &children[i] {
-                let (f, m) = self.carried[c];
-                total = (total.0.add(g, f), total.1.add(g, m));
-            }
+            let carried = children[i].iter().map(|&c| self.carried[c]);
+            let total = joint_wrench(g, self.own[i], carried);
             self.joint[i] = total;
             self.carried[i] = geometry::wrench_to_parent(g, &transforms[i], total.0, total.1);
             joint_force(g, &model.bodies[i].joint, total, inputs, &mut self.tau);
         }
     }
+}
+
+/// f_i = the body's own wrench plus its children's, carried to its frame (in the order
+/// given: the backward sweep's, children in decreasing order).
+pub(crate) fn joint_wrench(
+    g: &Graph,
+    own: (Vec3, Vec3),
+    carried: impl IntoIterator<Item = (Vec3, Vec3)>,
+) -> (Vec3, Vec3) {
+    carried.into_iter().fold(own, |(force, moment), (f, m)| {
+        (force.add(g, f), moment.add(g, m))
+    })
 }
 
 /// The children of every body, each list in decreasing order (the order in which the

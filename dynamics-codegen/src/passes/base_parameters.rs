@@ -233,10 +233,8 @@ fn regroup_sweep_windowed(
         let mut body = Some(bottom);
         for _ in 0..WINDOW_ANCESTORS + 2 {
             let Some(k) = body else { break };
-            let mut total = own_of(k);
-            for (f, m) in children[k].iter().filter_map(|&c| carried[c]).chain(below) {
-                total = (total.0.add(g, f), total.1.add(g, m));
-            }
+            let passed_children = children[k].iter().filter_map(|&c| carried[c]);
+            let total = rnea::joint_wrench(g, own_of(k), passed_children.chain(below));
             let joint = &model.bodies[k].joint;
             rnea::joint_force(g, joint, total, inputs, &mut tau);
             outputs.extend_from_slice(&tau[joint.idx_v..joint.idx_v + joint.kind.dofs()]);
@@ -290,10 +288,7 @@ fn regroup_sweep_windowed(
                 own[k] = wrench;
             }
         }
-        let mut total = own[i];
-        for (f, m) in children[i].iter().filter_map(|&c| carried[c]) {
-            total = (total.0.add(g, f), total.1.add(g, m));
-        }
+        let total = rnea::joint_wrench(g, own[i], children[i].iter().filter_map(|&c| carried[c]));
         let up = geometry::wrench_to_parent(g, &transforms[i], total.0, total.1);
         // Everything the carried wrench needs is shared from now on (not only its six
         // nodes: the rules may rewrite a sum with one of them into one with its operands).
