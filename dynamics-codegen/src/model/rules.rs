@@ -1182,6 +1182,10 @@ pub(crate) struct CoordinateInertia {
     pub configurations: usize,
     /// The joint's armature (rotor inertia), added to the coordinate's diagonal entry of M.
     pub armature: f64,
+    /// Whether the mass and every moment measured were finite numbers: with huge masses,
+    /// mass centres or placements (`mass: 1e300` a metre from the axis) the sums overflow to
+    /// infinity or NaN, which no comparison with zero judges.
+    pub finite: bool,
 }
 
 /// Rule: every joint coordinate has inertia: a revolute joint's subtree has a nonzero moment
@@ -1190,7 +1194,9 @@ pub(crate) struct CoordinateInertia {
 /// configurations sampled, or the joint has armature (which adds to the coordinate's own
 /// entries of M, so M = [armature] for a massless slider is not singular). Otherwise M(q) is
 /// singular for every q. "Nonzero" is relative to `scale`, the size of the mechanism's
-/// inertia as a whole.
+/// inertia as a whole (when that is finite; else only 0 is). A mass or moment that is not
+/// finite (the numbers overflow `f64`) is an error of its own, whatever the armature: M(q)
+/// then holds infinities or NaN.
 pub(crate) fn coordinate_has_inertia(
     joint: &Name,
     kind: &super::JointKind,
@@ -1199,7 +1205,28 @@ pub(crate) fn coordinate_has_inertia(
     d: &mut Diagnostics,
 ) {
     use super::JointKind::{Free, Prismatic, Revolute};
-    let negligible = |x: f64| x.abs() <= 1e-12 * scale.max(f64::MIN_POSITIVE) || x == 0.0;
+    if !measured.finite {
+        let about = match kind {
+            Revolute { .. } => "a moment of inertia about its axis",
+            Prismatic { .. } => "a mass",
+            Free => "an inertia about their centre of mass",
+        };
+        d.error(
+            joint.span,
+            format!(
+                "the inertia that the coordinate of joint `{}` moves overflows: the bodies it \
+                 moves (total mass {} kg) have {about} that is not a finite number (beyond \
+                 f64's range, about 1.8e308) in the configurations tried, so the mass matrix \
+                 M(q) cannot be computed; use smaller numbers (other units, or a mass centre \
+                 and placements nearer the joint)",
+                joint.text,
+                computed(measured.mass)
+            ),
+        );
+        return;
+    }
+    let negligible =
+        |x: f64| x == 0.0 || (scale.is_finite() && x.abs() <= 1e-12 * scale.max(f64::MIN_POSITIVE));
     let amount = |x: f64| {
         if x == 0.0 {
             "0 kg·m² in every configuration tried".to_owned()

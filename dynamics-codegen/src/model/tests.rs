@@ -328,6 +328,40 @@ fn coordinate_without_mass_says_what_was_measured() {
     );
 }
 
+/// A huge mass far from the axis: m |c|² overflows to infinity and the measured moments to
+/// NaN, which `max` passed over, so the rule reported "a moment of inertia of 0" (found by
+/// `tests/fuzz.rs`). With an infinite scale every moment looked negligible too. Now the
+/// overflow is said as such, for every kind of joint.
+#[test]
+fn an_overflowing_inertia_is_not_called_zero() {
+    for joint in [
+        quote!(joint spin: revolute(ground -> a) { axis: z }),
+        quote!(joint spin: revolute(ground -> a) { axis: [0.0, 0.6, 0.8] }),
+        quote!(joint spin: free(ground -> a);),
+    ] {
+        let e = errors(quote! {
+            struct S;
+            body a { mass: 1e300, com: [1e5, 2.0, 0.0], shape: point }
+            #joint
+        });
+        assert_eq!(e.len(), 1, "{e:?}");
+        assert!(
+            e[0].contains(
+                "the inertia that the coordinate of joint `spin` moves overflows: the bodies it \
+                 moves (total mass 1e300 kg) have"
+            ) && e[0].contains("that is not a finite number"),
+            "{e:?}"
+        );
+    }
+    // Huge but finite: accepted.
+    lower_tokens(quote! {
+        struct S;
+        body a { mass: 1e300, com: [1.0, 0.0, 0.0], shape: point }
+        joint spin: revolute(ground -> a) { axis: z }
+    })
+    .expect("finite");
+}
+
 /// A free body's rotations meet the inertia about its centre of mass, not about the joint
 /// origin: a rod off the origin spins about its own axis moving no mass, so M(q) is
 /// singular (found by `tests/fuzz.rs`; the parallel-axis term about the origin hid it).

@@ -421,6 +421,7 @@ fn check_coordinates_have_inertia(
             moment: 0.0,
             configurations: configurations.len(),
             armature: 0.0,
+            finite: true,
         })
         .collect();
     let mut scale = 0.0;
@@ -459,7 +460,9 @@ fn check_coordinates_have_inertia(
                 }
             };
             measured[j].mass = mass;
+            // (`max` would pass over a NaN: an overflow is recorded on its own.)
             measured[j].moment = measured[j].moment.max(moment);
+            measured[j].finite &= mass.is_finite() && moment.is_finite();
         }
     }
     let joints: HashMap<&str, &ResolvedJoint> = resolved
