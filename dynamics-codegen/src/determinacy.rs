@@ -1,4 +1,5 @@
-//! The numeric rank of the force analysis and of the loop closures, at compile time.
+//! The numeric rank of the force analysis, of the loop closures and of the mass matrix, at
+//! compile time.
 //!
 //! The model's rules check the force analysis structurally: as many unknowns as balance
 //! equations, and a matching between them body by body (`model::statics`). That cannot see
@@ -18,6 +19,10 @@
 //!   configuration is an error naming the unknowns that cannot be found (the columns that
 //!   are combinations of the others: exactly the unknowns some null vector of A moves) and
 //!   the bodies whose balance equations depend on the others (they move with no input).
+//! - **M(q)**, whenever the mechanism asks for dynamics, independently of the two above:
+//!   singular at every configuration means joint coordinates dependent in inertia (a
+//!   massless free base carrying one body), which the model's per-coordinate rule cannot
+//!   see. [`mass`] factors it and names the joints.
 //!
 //! A matrix singular at only some configurations (a toggle, a dead centre) has full rank at
 //! random ones and compiles; there the generated `force_analysis` reports it at run time
@@ -25,11 +30,13 @@
 //! unsatisfied is sound: every entry is analytic in q, so a rank lost at random points is
 //! lost everywhere, on the closed loop too.
 //!
-//! The rank is Gaussian elimination with complete pivoting on the matrix equilibrated
+//! The rank of Φ_q and A is Gaussian elimination with complete pivoting on the matrix equilibrated
 //! (columns to unit length, then rows to unit largest entry, which makes forces and
 //! couples, metres and radians comparable), pivots below [`TOLERANCE`] times the first
 //! counted as zero. The matrices are small (6 rows per body at most), and the dependent
 //! columns and rows, one rank each, are computed only for an error.
+
+mod mass;
 
 use crate::expand::{self, statics};
 use crate::model::statics::{Component, Statics};
@@ -43,21 +50,34 @@ const SAMPLES: usize = 5;
 /// A pivot below this fraction of the largest is zero.
 const TOLERANCE: f64 = 1e-9;
 
-/// Checks the force analysis and the loop closures of a validated model; every error at the
-/// declaration it concerns.
+/// Checks the force analysis and the loop closures of a validated model, and that its mass
+/// matrix is regular ([`mass`]); every error at the declaration it concerns.
 ///
 /// # Errors
-/// A closure Jacobian or a force analysis singular at every configuration tried.
+/// A closure Jacobian, a force analysis or a mass matrix singular at every configuration
+/// tried.
 pub(crate) fn check(mechanism: &syntax::Mechanism, model: &Model) -> syn::Result<()> {
-    let Some(statics) = &model.statics else {
-        return Ok(());
-    };
     let configurations = configurations(model);
     let mut d = Diagnostics::default();
+    if let Some(statics) = &model.statics {
+        check_statics(mechanism, model, statics, &configurations, &mut d);
+    }
+    mass::check(mechanism, model, &configurations, &mut d);
+    d.take_result()
+}
+
+/// The rank checks of the loop closures and of the force analysis.
+fn check_statics(
+    mechanism: &syntax::Mechanism,
+    model: &Model,
+    statics: &Statics,
+    configurations: &[Vec<f64>],
+    d: &mut Diagnostics,
+) {
     let (g, transforms, _) = expand::fresh_graph(model);
     let a = statics::balance_matrix(&g, model, statics, &transforms);
     let balance = Sampled::new(
-        evaluate(&g, &a, model, &configurations),
+        evaluate(&g, &a, model, configurations),
         statics.unknowns.len(),
         Full::Columns,
     );
@@ -65,17 +85,16 @@ pub(crate) fn check(mechanism: &syntax::Mechanism, model: &Model) -> syn::Result
         let phi = statics::closure_residual(&g, model, statics, &transforms);
         let jacobian = statics::closure_jacobian(&g, model, &phi);
         Sampled::new(
-            evaluate(&g, &jacobian, model, &configurations),
+            evaluate(&g, &jacobian, model, configurations),
             model.nv,
             Full::Rows,
         )
     });
     if let Some(closure) = closure.filter(Sampled::deficient) {
-        redundant_closure(mechanism, model, statics, &closure, &balance, &mut d);
+        redundant_closure(mechanism, model, statics, &closure, &balance, d);
     } else if balance.deficient() {
-        singular_force_analysis(mechanism, model, statics, &balance, &mut d);
+        singular_force_analysis(mechanism, model, statics, &balance, d);
     }
-    d.take_result()
 }
 
 /// Which rank is full: the number of columns (A: every unknown found) or of rows (Φ_q:
