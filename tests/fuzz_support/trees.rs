@@ -439,7 +439,8 @@ impl Tree {
             })
             .collect();
         // Never a free body: a massless free base carrying a body on a revolute joint has a
-        // singular M(q) (turning the base and the joint oppositely moves no mass).
+        // singular M(q) (turning the base and the joint oppositely moves no mass), which the
+        // compiler rejects; most such trees would be rejected.
         let mut massless: Vec<bool> = (0..n)
             .map(|k| f.massless && kinds[k] != Kind::Free && rng.chance(0.3))
             .collect();
