@@ -5,8 +5,9 @@
 //! ```text
 //! tokens ──parse──▶ syntax::Mechanism ──urdf::import──▶ (URDF links and joints added)
 //!   ──model::lower──▶ validated Model (every rule checked, errors at their spans)
-//!   ──determinacy::check──▶ the force analysis and loop closures of full rank at random
-//!                           configurations (evaluated through `expand`)
+//!   ──determinacy::check──▶ the force analysis and loop closures of full rank, M(q)
+//!                           positive definite, at random configurations (evaluated
+//!                           through `expand`)
 //!   ──functions::CATALOG + expand──▶ one graph per requested function (textbook recursions;
 //!                                    base-parameter pass for the functions of the Lagrangian)
 //!   ──passes::latency, passes::signs──▶ the graphs regrouped for latency, signs settled

@@ -357,6 +357,11 @@
 //! asks only for kinematics, energies, reactions or the force analysis may move massless
 //! links (a URDF's links without `<inertial>`), and so may its `Mechanism::model()`
 //! ([`ModelBuilder::allow_coordinates_without_inertia`](crate::ModelBuilder::allow_coordinates_without_inertia)).
+//! The coordinates must also be independent in inertia together: M(q), evaluated at a few
+//! random configurations, must be positive definite at one of them, or the error names the
+//! joints whose coordinates are dependent (a massless body on a free joint carrying one
+//! body: 7 coordinates for the 6 that one rigid body has; massless links ending at a point
+//! mass). Singular at special configurations only (a stretched arm) compiles.
 //!
 //! ```rust
 //! use dynamics_runtime::{mechanism, Mechanism};
