@@ -578,3 +578,77 @@ fn derivatives_with_loads_include_the_loads_and_are_the_dual_number_derivatives(
     // The loads do work: their derivative is not all zero.
     assert!(dtau_dl.iter().flatten().any(|x| x.abs() > 1e-3));
 }
+
+mechanism! {
+    /// A free base carrying a 12-link chain: its forward dynamics is the articulated-body
+    /// algorithm, but its forward-dynamics derivatives take q̈ from the LDLᵀ factorization
+    /// their solves need anyway (the cheaper chain rule here).
+    pub struct FreeChainDerivatives;
+    outputs: [forward_dynamics, forward_dynamics_derivatives];
+    body pelvis { mass: 5.0, inertia: diag([0.05, 0.04, 0.03]) }
+    joint base: free(ground -> pelvis);
+    body link0 { mass: 1.0, com: [0.01, 0.02, -0.1], inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0005], [0.0, 0.0005, 0.008]] }
+    body link1 { mass: 1.1, com: [0.01, 0.02, -0.1], inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0005], [0.0, 0.0005, 0.008]] }
+    body link2 { mass: 1.2, com: [0.01, 0.02, -0.1], inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0005], [0.0, 0.0005, 0.008]] }
+    body link3 { mass: 1.3, com: [0.01, 0.02, -0.1], inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0005], [0.0, 0.0005, 0.008]] }
+    body link4 { mass: 1.4, com: [0.01, 0.02, -0.1], inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0005], [0.0, 0.0005, 0.008]] }
+    body link5 { mass: 1.5, com: [0.01, 0.02, -0.1], inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0005], [0.0, 0.0005, 0.008]] }
+    body link6 { mass: 1.6, com: [0.01, 0.02, -0.1], inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0005], [0.0, 0.0005, 0.008]] }
+    body link7 { mass: 1.7, com: [0.01, 0.02, -0.1], inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0005], [0.0, 0.0005, 0.008]] }
+    body link8 { mass: 1.8, com: [0.01, 0.02, -0.1], inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0005], [0.0, 0.0005, 0.008]] }
+    body link9 { mass: 1.9, com: [0.01, 0.02, -0.1], inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0005], [0.0, 0.0005, 0.008]] }
+    body link10 { mass: 2.0, com: [0.01, 0.02, -0.1], inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0005], [0.0, 0.0005, 0.008]] }
+    body link11 { mass: 2.1, com: [0.01, 0.02, -0.1], inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0005], [0.0, 0.0005, 0.008]] }
+    joint joint0: revolute(pelvis -> link0) { axis: x, at: [0.0, 0.1, -0.1] }
+    joint joint1: revolute(link0 -> link1) { axis: y, at: [0.02, 0.0, -0.2] }
+    joint joint2: revolute(link1 -> link2) { axis: z, at: [0.02, 0.0, -0.2] }
+    joint joint3: revolute(link2 -> link3) { axis: x, at: [0.02, 0.0, -0.2] }
+    joint joint4: revolute(link3 -> link4) { axis: y, at: [0.02, 0.0, -0.2] }
+    joint joint5: revolute(link4 -> link5) { axis: z, at: [0.02, 0.0, -0.2] }
+    joint joint6: revolute(link5 -> link6) { axis: x, at: [0.02, 0.0, -0.2] }
+    joint joint7: revolute(link6 -> link7) { axis: y, at: [0.02, 0.0, -0.2] }
+    joint joint8: revolute(link7 -> link8) { axis: z, at: [0.02, 0.0, -0.2] }
+    joint joint9: revolute(link8 -> link9) { axis: x, at: [0.02, 0.0, -0.2] }
+    joint joint10: revolute(link9 -> link10) { axis: y, at: [0.02, 0.0, -0.2] }
+    joint joint11: revolute(link10 -> link11) { axis: z, at: [0.02, 0.0, -0.2] }
+}
+
+/// The forward-dynamics derivatives of [`FreeChainDerivatives`] (q̈ from the factorization
+/// of the solves, not from the articulated-body algorithm its `forward_dynamics` uses)
+/// against dual numbers through that `forward_dynamics`, within 1e-12.
+#[test]
+fn forward_dynamics_derivatives_through_the_solves_factorization_are_the_dual_ones() {
+    use dynamics_runtime::{integrate_configuration, Dual};
+    type D = Dual<f64>;
+    const NQ: usize = 19;
+    const NV: usize = 18;
+    let mut rng = dynamics_tests::random::SplitMix(7);
+    for _ in 0..4 {
+        let mut q: [f64; NQ] = std::array::from_fn(|_| rng.uniform(-1.5, 1.5));
+        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        let v: [f64; NV] = std::array::from_fn(|_| rng.uniform(-2.0, 2.0));
+        let tau: [f64; NV] = std::array::from_fn(|_| rng.uniform(-5.0, 5.0));
+        let (ddq_dq, ddq_dv) = FreeChainDerivatives::forward_dynamics_derivatives(&q, &v, &tau);
+        let q_d: [D; NQ] = q.map(D::constant);
+        let (v_d, tau_d): ([D; NV], [D; NV]) = (v.map(D::constant), tau.map(D::constant));
+        let (mut by_q, mut by_v) = ([[0.0; NV]; NV], [[0.0; NV]; NV]);
+        for col in 0..NV {
+            let mut unit = [D::constant(0.0); NV];
+            unit[col] = D::constant(1.0);
+            let mut q_moved = [D::constant(0.0); NQ];
+            integrate_configuration(&q_d, &unit, D::variable(0.0), &[(0, 0)], &mut q_moved);
+            let mut v_moved = v_d;
+            v_moved[col] = D::variable(v[col]);
+            let along_q = FreeChainDerivatives::forward_dynamics(&q_moved, &v_d, &tau_d);
+            let along_v = FreeChainDerivatives::forward_dynamics(&q_d, &v_moved, &tau_d);
+            for row in 0..NV {
+                by_q[row][col] = along_q[row].derivative;
+                by_v[row][col] = along_v[row].derivative;
+            }
+        }
+        let to_rows = |m: &[[f64; NV]; NV]| m.iter().map(|r| r.to_vec()).collect::<Vec<_>>();
+        assert_matrix(&ddq_dq, &to_rows(&by_q), 1e-12, "∂q̈/∂q");
+        assert_matrix(&ddq_dv, &to_rows(&by_v), 1e-12, "∂q̈/∂v");
+    }
+}
