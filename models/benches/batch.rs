@@ -1,0 +1,307 @@
+//! States per second through the batch API on one and on two threads: 4,096 seeded states
+//! of the UR5 and of the 18-dof quadruped, inverse dynamics, mass matrix and forward
+//! dynamics.
+//!
+//! ```sh
+//! cargo bench -p models --bench batch          # ~1 min after the build
+//! ```
+//!
+//! Ids are `batch/<Model>/<function>/<variant>/<threads>`; one measured iteration evaluates
+//! the function on all 4,096 states and keeps every result in memory. Variants:
+//!
+//! - `f64`: one call per state (the AVX2 + FMA copy where the CPU has both), the states
+//!   split into blocks of 64 over rayon's threads;
+//! - `F64x4`: `batch::map4`/`map1` on one thread, `batch::par_map4`/`par_map1` on two (the
+//!   runtime's feature `rayon`), four states per call, packing included.
+//!
+//! Each runs in a rayon pool of 1 and of 2 threads. After criterion's own report, a table
+//! gives millions of states per second: 4,096 over the median of criterion's 20 flat
+//! samples.
+
+use criterion::measurement::WallTime;
+use criterion::{BenchmarkGroup, Criterion, SamplingMode};
+use dynamics_runtime::{batch, Mechanism};
+use models::anchors::Ur5;
+use models::quadruped::Quadruped;
+use rayon::prelude::*;
+use std::cell::RefCell;
+use std::f64::consts::PI;
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+/// States per measured iteration.
+const N: usize = 4096;
+/// States per rayon task for the one-state-per-call variant.
+const BLOCK: usize = 64;
+
+const UR5: usize = <Ur5 as Mechanism>::NV;
+const QUAD_NQ: usize = <Quadruped as Mechanism>::NQ;
+const QUAD_NV: usize = <Quadruped as Mechanism>::NV;
+const QUAD_NL: usize = <Quadruped as Mechanism>::NUM_LOAD_INPUTS;
+
+/// SplitMix64 in [lo, hi).
+struct Rng(u64);
+
+impl Rng {
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        lo + (hi - lo) * ((z >> 11) as f64 / (1u64 << 53) as f64)
+    }
+
+    fn array<const K: usize>(&mut self, lo: f64, hi: f64) -> [f64; K] {
+        std::array::from_fn(|_| self.uniform(lo, hi))
+    }
+}
+
+/// N states of one model: angles in ±π (a unit quaternion where there is a free joint),
+/// rates in ±2, accelerations and torques in ±5, loads in [−20, 40].
+struct States<const NQ: usize, const NV: usize, const NL: usize> {
+    q: Vec<[f64; NQ]>,
+    v: Vec<[f64; NV]>,
+    a: Vec<[f64; NV]>,
+    tau: Vec<[f64; NV]>,
+    loads: Vec<[f64; NL]>,
+}
+
+impl<const NQ: usize, const NV: usize, const NL: usize> States<NQ, NV, NL> {
+    fn new(seed: u64) -> Self {
+        let mut rng = Rng(seed);
+        let q = (0..N)
+            .map(|_| {
+                let mut q: [f64; NQ] = rng.array(-PI, PI);
+                if NQ == NV + 1 {
+                    let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+                    q[3..7].iter_mut().for_each(|x| *x /= norm);
+                }
+                q
+            })
+            .collect();
+        Self {
+            q,
+            v: (0..N).map(|_| rng.array(-2.0, 2.0)).collect(),
+            a: (0..N).map(|_| rng.array(-5.0, 5.0)).collect(),
+            tau: (0..N).map(|_| rng.array(-5.0, 5.0)).collect(),
+            loads: (0..N).map(|_| rng.array(-20.0, 40.0)).collect(),
+        }
+    }
+}
+
+thread_local! {
+    /// (id, seconds per iteration of each timed sample), in order.
+    static TIMES: RefCell<Vec<(String, Vec<f64>)>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Times `f` (one iteration: all N states, run inside `pool`) as `<group>/<id>`.
+fn bench(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    group: &str,
+    id: &str,
+    pool: &rayon::ThreadPool,
+    mut f: impl FnMut() + Send,
+) {
+    let mut times = Vec::new();
+    g.bench_function(id, |b| {
+        b.iter_custom(|iters| {
+            let start = Instant::now();
+            for _ in 0..iters {
+                pool.install(&mut f);
+            }
+            let elapsed = start.elapsed();
+            times.push(elapsed.as_secs_f64() / iters as f64);
+            elapsed
+        })
+    });
+    if !times.is_empty() {
+        TIMES.with(|t| t.borrow_mut().push((format!("{group}/{id}"), times)));
+    }
+}
+
+/// One model's three functions, both variants, on 1 and 2 threads. The closures take
+/// (q, v, a, loads) for inverse dynamics, q for the mass matrix, (q, v, τ, loads) for
+/// forward dynamics, written for any scalar.
+macro_rules! model {
+    ($c:expr, $group:expr, $states:expr, $nv:expr,
+     id: |$q:ident, $v:ident, $a:ident, $l:ident| $id:expr,
+     mm: |$mq:ident| $mm:expr,
+     fd: |$fq:ident, $fv:ident, $ft:ident, $fl:ident| $fd:expr) => {{
+        let s = $states;
+        let mut out = vec![[0.0_f64; $nv]; N];
+        let mut m = vec![[[0.0_f64; $nv]; $nv]; N];
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("a rayon pool");
+            bench(
+                $c,
+                $group,
+                &format!("inverse_dynamics/f64/{threads}"),
+                &pool,
+                || {
+                    out.par_chunks_mut(BLOCK).enumerate().for_each(|(b, out)| {
+                        for (k, o) in out.iter_mut().enumerate() {
+                            let i = b * BLOCK + k;
+                            let ($q, $v, $a, $l) = (&s.q[i], &s.v[i], &s.a[i], &s.loads[i]);
+                            *o = $id;
+                        }
+                    });
+                    black_box(&mut out);
+                },
+            );
+            bench(
+                $c,
+                $group,
+                &format!("inverse_dynamics/F64x4/{threads}"),
+                &pool,
+                || {
+                    let r = if threads == 1 {
+                        batch::map4(&s.q, &s.v, &s.a, &s.loads, &mut out, |$q, $v, $a, $l| $id)
+                    } else {
+                        batch::par_map4(&s.q, &s.v, &s.a, &s.loads, &mut out, |$q, $v, $a, $l| $id)
+                    };
+                    black_box((r.is_ok(), &mut out));
+                },
+            );
+            bench(
+                $c,
+                $group,
+                &format!("mass_matrix/f64/{threads}"),
+                &pool,
+                || {
+                    m.par_chunks_mut(BLOCK).enumerate().for_each(|(b, m)| {
+                        for (k, o) in m.iter_mut().enumerate() {
+                            let $mq = &s.q[b * BLOCK + k];
+                            *o = $mm;
+                        }
+                    });
+                    black_box(&mut m);
+                },
+            );
+            bench(
+                $c,
+                $group,
+                &format!("mass_matrix/F64x4/{threads}"),
+                &pool,
+                || {
+                    let r = if threads == 1 {
+                        batch::map1(&s.q, &mut m, |$mq| $mm)
+                    } else {
+                        batch::par_map1(&s.q, &mut m, |$mq| $mm)
+                    };
+                    black_box((r.is_ok(), &mut m));
+                },
+            );
+            bench(
+                $c,
+                $group,
+                &format!("forward_dynamics/f64/{threads}"),
+                &pool,
+                || {
+                    out.par_chunks_mut(BLOCK).enumerate().for_each(|(b, out)| {
+                        for (k, o) in out.iter_mut().enumerate() {
+                            let i = b * BLOCK + k;
+                            let ($fq, $fv, $ft, $fl) = (&s.q[i], &s.v[i], &s.tau[i], &s.loads[i]);
+                            *o = $fd;
+                        }
+                    });
+                    black_box(&mut out);
+                },
+            );
+            bench(
+                $c,
+                $group,
+                &format!("forward_dynamics/F64x4/{threads}"),
+                &pool,
+                || {
+                    let r = if threads == 1 {
+                        batch::map4(
+                            &s.q,
+                            &s.v,
+                            &s.tau,
+                            &s.loads,
+                            &mut out,
+                            |$fq, $fv, $ft, $fl| $fd,
+                        )
+                    } else {
+                        batch::par_map4(
+                            &s.q,
+                            &s.v,
+                            &s.tau,
+                            &s.loads,
+                            &mut out,
+                            |$fq, $fv, $ft, $fl| $fd,
+                        )
+                    };
+                    black_box((r.is_ok(), &mut out));
+                },
+            );
+        }
+    }};
+}
+
+fn benches(c: &mut Criterion) {
+    let mut g = c.benchmark_group("batch/Ur5");
+    g.sampling_mode(SamplingMode::Flat);
+    model!(&mut g, "batch/Ur5", States::<UR5, UR5, 0>::new(1), UR5,
+        id: |q, v, a, l| { let _ = l; Ur5::inverse_dynamics(q, v, a) },
+        mm: |q| Ur5::mass_matrix(q),
+        fd: |q, v, t, l| { let _ = l; Ur5::forward_dynamics(q, v, t) });
+    g.finish();
+    let mut g = c.benchmark_group("batch/Quadruped");
+    g.sampling_mode(SamplingMode::Flat);
+    model!(&mut g, "batch/Quadruped", States::<QUAD_NQ, QUAD_NV, QUAD_NL>::new(2), QUAD_NV,
+        id: |q, v, a, l| Quadruped::inverse_dynamics(q, v, a, l),
+        mm: |q| Quadruped::mass_matrix(q),
+        fd: |q, v, t, l| Quadruped::forward_dynamics(q, v, t, l));
+    g.finish();
+}
+
+/// The table: millions of states per second, medians over the last 20 samples.
+fn table() {
+    let rate = |id: &str| {
+        TIMES.with(|t| {
+            t.borrow()
+                .iter()
+                .find(|(name, _)| name == id)
+                .map(|(_, times)| {
+                    let mut last: Vec<f64> = times.iter().rev().take(20).copied().collect();
+                    last.sort_by(f64::total_cmp);
+                    N as f64 / last[last.len() / 2] / 1e6
+                })
+        })
+    };
+    println!("\nmillions of states per second (median of 20 samples, {N} states each)\n");
+    println!("| model | function | f64, 1 thread | f64, 2 threads | F64x4, 1 thread | F64x4, 2 threads |");
+    println!("| --- | --- | ---: | ---: | ---: | ---: |");
+    for (model, name) in [("Ur5", "UR5"), ("Quadruped", "quadruped")] {
+        for function in ["inverse_dynamics", "mass_matrix", "forward_dynamics"] {
+            let cell = |variant: &str, threads: usize| {
+                rate(&format!("batch/{model}/{function}/{variant}/{threads}"))
+                    .map_or_else(|| "–".to_owned(), |r| format!("{r:.2}"))
+            };
+            println!(
+                "| {name} | {} | {} | {} | {} | {} |",
+                function.replace('_', " "),
+                cell("f64", 1),
+                cell("f64", 2),
+                cell("F64x4", 1),
+                cell("F64x4", 2)
+            );
+        }
+    }
+}
+
+fn main() {
+    let mut c = Criterion::default()
+        .sample_size(20)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(2))
+        .configure_from_args();
+    benches(&mut c);
+    c.final_summary();
+    table();
+}
