@@ -423,16 +423,7 @@ fn redundant_closure(
         ));
     }
     if !moving.is_empty() {
-        let joints: Vec<&str> = closure
-            .columns_touched(&moving)
-            .into_iter()
-            .filter_map(|j| coordinate_joint(model, j))
-            .fold(Vec::new(), |mut names, n| {
-                if !names.contains(&n) {
-                    names.push(n);
-                }
-                names
-            });
+        let joints = coordinate_joints(model, closure.columns_touched(&moving));
         why.push(format!(
             "{} depend on one another through the coordinates of {}",
             quoted(moving.iter().map(|&i| name(i))),
@@ -487,6 +478,20 @@ fn redundant_closure(
             },
         ),
     );
+}
+
+/// The joints of the velocity coordinates `coordinates`, each named once, in the order met.
+fn coordinate_joints(model: &Model, coordinates: impl IntoIterator<Item = usize>) -> Vec<&str> {
+    let mut names = Vec::new();
+    for name in coordinates
+        .into_iter()
+        .filter_map(|j| coordinate_joint(model, j))
+    {
+        if !names.contains(&name) {
+            names.push(name);
+        }
+    }
+    names
 }
 
 /// The joint whose coordinate is velocity coordinate `j`.

@@ -32,7 +32,7 @@
 //! graph past the node budget decides nothing either. It only reads the model: no generated
 //! code changes.
 
-use super::{coordinate_joint, evaluate, quoted, SAMPLES};
+use super::{coordinate_joints, evaluate, quoted, SAMPLES};
 use crate::expand::{self, crba};
 use crate::model::{Diagnostics, Model};
 use crate::syntax::{self, SpanRange};
@@ -192,16 +192,7 @@ fn singular(
     factored: &Factored,
     d: &mut Diagnostics,
 ) {
-    let joints: Vec<&str> = factored
-        .moved()
-        .into_iter()
-        .filter_map(|j| coordinate_joint(model, j))
-        .fold(Vec::new(), |mut names, n| {
-            if !names.contains(&n) {
-                names.push(n);
-            }
-            names
-        });
+    let joints = coordinate_joints(model, factored.moved());
     let p: Vec<f64> = model.parameters.iter().map(|p| p.nominal).collect();
     let massless: Vec<&str> = model
         .bodies
