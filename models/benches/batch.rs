@@ -25,7 +25,6 @@ use models::anchors::Ur5;
 use models::quadruped::Quadruped;
 use rayon::prelude::*;
 use std::cell::RefCell;
-use std::f64::consts::PI;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
@@ -39,55 +38,18 @@ const QUAD_NQ: usize = <Quadruped as Mechanism>::NQ;
 const QUAD_NV: usize = <Quadruped as Mechanism>::NV;
 const QUAD_NL: usize = <Quadruped as Mechanism>::NUM_LOAD_INPUTS;
 
-/// SplitMix64 in [lo, hi).
-struct Rng(u64);
+#[path = "support/states.rs"]
+mod states;
+use states::States;
 
-impl Rng {
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        lo + (hi - lo) * ((z >> 11) as f64 / (1u64 << 53) as f64)
-    }
-
-    fn array<const K: usize>(&mut self, lo: f64, hi: f64) -> [f64; K] {
-        std::array::from_fn(|_| self.uniform(lo, hi))
-    }
-}
-
-/// N states of one model: angles in ±π (a unit quaternion where there is a free joint),
-/// rates in ±2, accelerations and torques in ±5, loads in [−20, 40].
-struct States<const NQ: usize, const NV: usize, const NL: usize> {
-    q: Vec<[f64; NQ]>,
-    v: Vec<[f64; NV]>,
-    a: Vec<[f64; NV]>,
-    tau: Vec<[f64; NV]>,
-    loads: Vec<[f64; NL]>,
-}
-
-impl<const NQ: usize, const NV: usize, const NL: usize> States<NQ, NV, NL> {
-    fn new(seed: u64) -> Self {
-        let mut rng = Rng(seed);
-        let q = (0..N)
-            .map(|_| {
-                let mut q: [f64; NQ] = rng.array(-PI, PI);
-                if NQ == NV + 1 {
-                    let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-                    q[3..7].iter_mut().for_each(|x| *x /= norm);
-                }
-                q
-            })
-            .collect();
-        Self {
-            q,
-            v: (0..N).map(|_| rng.array(-2.0, 2.0)).collect(),
-            a: (0..N).map(|_| rng.array(-5.0, 5.0)).collect(),
-            tau: (0..N).map(|_| rng.array(-5.0, 5.0)).collect(),
-            loads: (0..N).map(|_| rng.array(-20.0, 40.0)).collect(),
+/// `out[i] = f(i)` for every state, one call each, in blocks of [`BLOCK`] states over the
+/// current rayon pool's threads.
+fn each_state<O: Send>(out: &mut [O], f: impl Fn(usize) -> O + Sync) {
+    out.par_chunks_mut(BLOCK).enumerate().for_each(|(b, out)| {
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = f(b * BLOCK + k);
         }
-    }
+    });
 }
 
 thread_local! {
@@ -142,12 +104,9 @@ macro_rules! model {
                 &format!("inverse_dynamics/f64/{threads}"),
                 &pool,
                 || {
-                    out.par_chunks_mut(BLOCK).enumerate().for_each(|(b, out)| {
-                        for (k, o) in out.iter_mut().enumerate() {
-                            let i = b * BLOCK + k;
-                            let ($q, $v, $a, $l) = (&s.q[i], &s.v[i], &s.a[i], &s.loads[i]);
-                            *o = $id;
-                        }
+                    each_state(&mut out, |i| {
+                        let ($q, $v, $a, $l) = (&s.q[i], &s.v[i], &s.a[i], &s.loads[i]);
+                        $id
                     });
                     black_box(&mut out);
                 },
@@ -172,11 +131,9 @@ macro_rules! model {
                 &format!("mass_matrix/f64/{threads}"),
                 &pool,
                 || {
-                    m.par_chunks_mut(BLOCK).enumerate().for_each(|(b, m)| {
-                        for (k, o) in m.iter_mut().enumerate() {
-                            let $mq = &s.q[b * BLOCK + k];
-                            *o = $mm;
-                        }
+                    each_state(&mut m, |i| {
+                        let $mq = &s.q[i];
+                        $mm
                     });
                     black_box(&mut m);
                 },
@@ -201,12 +158,9 @@ macro_rules! model {
                 &format!("forward_dynamics/f64/{threads}"),
                 &pool,
                 || {
-                    out.par_chunks_mut(BLOCK).enumerate().for_each(|(b, out)| {
-                        for (k, o) in out.iter_mut().enumerate() {
-                            let i = b * BLOCK + k;
-                            let ($fq, $fv, $ft, $fl) = (&s.q[i], &s.v[i], &s.tau[i], &s.loads[i]);
-                            *o = $fd;
-                        }
+                    each_state(&mut out, |i| {
+                        let ($fq, $fv, $ft, $fl) = (&s.q[i], &s.v[i], &s.tau[i], &s.loads[i]);
+                        $fd
                     });
                     black_box(&mut out);
                 },
@@ -246,14 +200,14 @@ macro_rules! model {
 fn benches(c: &mut Criterion) {
     let mut g = c.benchmark_group("batch/Ur5");
     g.sampling_mode(SamplingMode::Flat);
-    model!(&mut g, "batch/Ur5", States::<UR5, UR5, 0>::new(1), UR5,
+    model!(&mut g, "batch/Ur5", States::<UR5, UR5, 0>::new(1, N), UR5,
         id: |q, v, a, l| { let _ = l; Ur5::inverse_dynamics(q, v, a) },
         mm: |q| Ur5::mass_matrix(q),
         fd: |q, v, t, l| { let _ = l; Ur5::forward_dynamics(q, v, t) });
     g.finish();
     let mut g = c.benchmark_group("batch/Quadruped");
     g.sampling_mode(SamplingMode::Flat);
-    model!(&mut g, "batch/Quadruped", States::<QUAD_NQ, QUAD_NV, QUAD_NL>::new(2), QUAD_NV,
+    model!(&mut g, "batch/Quadruped", States::<QUAD_NQ, QUAD_NV, QUAD_NL>::new(2, N), QUAD_NV,
         id: |q, v, a, l| Quadruped::inverse_dynamics(q, v, a, l),
         mm: |q| Quadruped::mass_matrix(q),
         fd: |q, v, t, l| Quadruped::forward_dynamics(q, v, t, l));

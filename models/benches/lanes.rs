@@ -30,7 +30,6 @@ use dynamics_runtime::{batch, isa, F64x4, Mechanism};
 use models::anchors::Ur5;
 use models::quadruped::Quadruped;
 use std::cell::RefCell;
-use std::f64::consts::PI;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
@@ -42,55 +41,9 @@ const QUAD_NQ: usize = <Quadruped as Mechanism>::NQ;
 const QUAD_NV: usize = <Quadruped as Mechanism>::NV;
 const QUAD_NL: usize = <Quadruped as Mechanism>::NUM_LOAD_INPUTS;
 
-/// SplitMix64 in [lo, hi).
-struct Rng(u64);
-
-impl Rng {
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        lo + (hi - lo) * ((z >> 11) as f64 / (1u64 << 53) as f64)
-    }
-
-    fn array<const K: usize>(&mut self, lo: f64, hi: f64) -> [f64; K] {
-        std::array::from_fn(|_| self.uniform(lo, hi))
-    }
-}
-
-/// The states of one model, each field a slice of N, in f64 and in f32.
-struct States<const NQ: usize, const NV: usize, const NL: usize> {
-    q: Vec<[f64; NQ]>,
-    v: Vec<[f64; NV]>,
-    a: Vec<[f64; NV]>,
-    tau: Vec<[f64; NV]>,
-    loads: Vec<[f64; NL]>,
-}
-
-impl<const NQ: usize, const NV: usize, const NL: usize> States<NQ, NV, NL> {
-    fn new(seed: u64) -> Self {
-        let mut rng = Rng(seed);
-        let q = (0..N)
-            .map(|_| {
-                let mut q: [f64; NQ] = rng.array(-PI, PI);
-                if NQ == NV + 1 {
-                    let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-                    q[3..7].iter_mut().for_each(|x| *x /= norm);
-                }
-                q
-            })
-            .collect();
-        Self {
-            q,
-            v: (0..N).map(|_| rng.array(-2.0, 2.0)).collect(),
-            a: (0..N).map(|_| rng.array(-5.0, 5.0)).collect(),
-            tau: (0..N).map(|_| rng.array(-5.0, 5.0)).collect(),
-            loads: (0..N).map(|_| rng.array(-20.0, 40.0)).collect(),
-        }
-    }
-}
+#[path = "support/states.rs"]
+mod states;
+use states::States;
 
 fn to_f32<const K: usize>(x: &[[f64; K]]) -> Vec<[f32; K]> {
     x.iter().map(|x| x.map(|x| x as f32)).collect()
@@ -257,14 +210,14 @@ macro_rules! model {
 fn benches(c: &mut Criterion) {
     let mut g = c.benchmark_group("lanes/Ur5");
     g.sampling_mode(SamplingMode::Flat);
-    model!(&mut g, "lanes/Ur5", &States::<UR5, UR5, 0>::new(1), UR5,
+    model!(&mut g, "lanes/Ur5", &States::<UR5, UR5, 0>::new(1, N), UR5,
         id: |q, v, a, _l| Ur5::inverse_dynamics(q, v, a),
         mm: |q| Ur5::mass_matrix(q),
         fd: |q, v, tau, _l| Ur5::forward_dynamics(q, v, tau));
     g.finish();
     let mut g = c.benchmark_group("lanes/Quadruped");
     g.sampling_mode(SamplingMode::Flat);
-    model!(&mut g, "lanes/Quadruped", &States::<QUAD_NQ, QUAD_NV, QUAD_NL>::new(2), QUAD_NV,
+    model!(&mut g, "lanes/Quadruped", &States::<QUAD_NQ, QUAD_NV, QUAD_NL>::new(2, N), QUAD_NV,
         id: |q, v, a, l| Quadruped::inverse_dynamics(q, v, a, l),
         mm: |q| Quadruped::mass_matrix(q),
         fd: |q, v, tau, l| Quadruped::forward_dynamics(q, v, tau, l));
