@@ -464,7 +464,7 @@ fn redundant_closure(
         span,
         format!(
             "{these} {} {} redundant at every configuration: the loop-closure Jacobian Φ_q has \
-             rank {rank} for its {} at each of the {SAMPLES} configurations tried; {}. \
+             rank at most {rank} for its {} in the {SAMPLES} configurations tried; {}. \
              Equilibrium cannot find {}{forces}: remove the constraint, or release the \
              components that the joints or the other constraints already hold",
             quoted(redundant.iter().map(|&i| name(i))),
@@ -570,7 +570,7 @@ fn singular_force_analysis(
         span,
         format!(
             "the force analysis is singular at every configuration: its balance equations \
-             A(q) x = b have rank {rank} for {} at each of the {SAMPLES} configurations \
+             A(q) x = b have rank at most {rank} for {} in the {SAMPLES} configurations \
              tried, so the unknowns {} cannot be found: the equations do not determine them \
              at any configuration{moving}. A reaction along the line of another, or one through \
              the pivot it should brace, adds an unknown and no equation: move or turn the \
