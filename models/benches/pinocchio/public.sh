@@ -147,7 +147,8 @@ EOF
   echo "    rebuilt in $SECONDS_BUILD s, peak $((KB_BUILD / 1024)) MB" >&2
   # The machine code of each generated function, from the benchmark binary's symbols (v0
   # mangling names the function each kernel copy was instantiated for).
-  BIN="$(find "$CRATE/target/release/deps" -maxdepth 1 -type f -executable -name 'public-*' | head -1)"
+  # The newest: earlier builds of the same crate leave their binaries beside it.
+  BIN="$(ls -t $(find "$CRATE/target/release/deps" -maxdepth 1 -type f -executable -name 'public-*') | head -1)"
   nm -S --size-sort -C "$BIN" | grep 'public_robot::Robot>::' > "$CRATE/code-size.txt" || true
 
   LOAD="$(cut -d' ' -f1-3 /proc/loadavg)"
