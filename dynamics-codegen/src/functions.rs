@@ -23,7 +23,7 @@
 //! | `frame_placements(q)`, `frame_jacobians(q)`, `frame_jacobians_local(q)` | each operational frame's (R, p) in the world and its 6 × nv Jacobian, world-aligned at its origin or in its own axes (asked for by name) | [`frames`] |
 //! | `frame_velocities(q, v)`, `frame_acceleration_biases(q, v)` | each operational frame's [v; ω] and J̇ q̇, world axes at its origin (asked for by name) | [`frames`] + [`rnea`]'s forward sweep |
 //! | `centroidal_bias(q, v)` | Ȧ_G q̇ (asked for by name) | [`kinematics`] + [`rnea`]'s forward sweep |
-//! | `inverse_dynamics_derivatives(q, v, a)` | (∂τ/∂q, ∂τ/∂q̇), q in the tangent space (asked for by name) | [`rnea`] + [`derivatives`] |
+//! | `inverse_dynamics_derivatives(q, v, a)` | (∂τ/∂q, ∂τ/∂q̇), q in the tangent space (asked for by name) | [`rnea`] + [`derivatives`]; without free joints ∂τ/∂q̇ = 2 C + diag(b) by [`coriolis`] where that is cheaper |
 //! | `forward_dynamics_derivatives(q, v, tau)` | (∂q̈/∂q, ∂q̈/∂q̇) (asked for by name) | the cheapest of: [`derivatives`] of `forward_dynamics`' expansion, or −M⁻¹ ∂τ/∂x by [`rnea`] + [`derivatives`] + [`ldlt`] solves with q̈ by `forward_dynamics`' method or by the solves' own factorization |
 //! | `mass_matrix_inverse(q)` | M(q)⁻¹ (asked for by name) | [`crba`] + [`ldlt`] |
 //! | `force_analysis(q, v, a)` | every reaction component and driving effort, with the pivots of R | [`statics`] + [`qr`] |
@@ -47,7 +47,7 @@ use crate::expand::{
     aba, coriolis, crba, energy, fresh_graph, inputs, kinematics, ldlt, qr, statics,
 };
 use crate::ir::{Arg, Function, FunctionSpec, Output};
-use crate::model::Model;
+use crate::model::{JointKind, Model};
 use crate::passes::base_parameters;
 use crate::sym::{Array, Graph, Node, Vec3};
 
@@ -421,6 +421,78 @@ fn state_jacobians(g: &Graph, model: &Model, outputs: &[Node]) -> Output {
     )
 }
 
+/// How the derivative outputs expand ∂τ/∂q̇.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum VelocityColumns {
+    /// Forward-mode differentiation of Newton–Euler, like the other columns.
+    ForwardMode,
+    /// 2 C(q, q̇) + diag(b) ([`velocity_jacobian_by_coriolis`]): joint coordinates only.
+    Coriolis,
+}
+
+/// The ways ∂τ/∂q̇ can be expanded for `model`: forward mode always, 2 C + diag(b) when
+/// every coordinate is a joint coordinate (no free joint).
+fn velocity_columns(model: &Model) -> Vec<VelocityColumns> {
+    let mut ways = vec![VelocityColumns::ForwardMode];
+    if model.bodies.iter().all(|b| b.joint.kind != JointKind::Free) {
+        ways.push(VelocityColumns::Coriolis);
+    }
+    ways
+}
+
+/// ∂τ/∂q̇ = 2 C(q, q̇) + diag(b), C the Christoffel-consistent Coriolis matrix (over its
+/// cheapest base parameters, as the `coriolis_matrix` output). With generalized
+/// coordinates, C_kj = Σ_i Γ_kij q̇_i for the Christoffel symbols Γ_kij, symmetric in i and
+/// j, so C(q, q̇) q̇ = Σ_ij Γ_kij q̇_i q̇_j and ∂(C q̇)_k/∂q̇_j = 2 Σ_i Γ_kij q̇_i = 2 C_kj;
+/// M(q) q̈, g(q) and the applied loads Q(q) do not depend on q̇, and damping adds b. Not
+/// for a free joint: its velocities are the body's twist, not the derivatives of
+/// coordinates, and C q̇ is not a symmetric form in them.
+fn velocity_jacobian_by_coriolis(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    inertias: &[BodyInertia],
+    v: &[Node],
+) -> Vec<Vec<Node>> {
+    let build = |i: &[BodyInertia]| coriolis::coriolis_matrix(g, model, transforms, i, v);
+    let c = build(&base_parameters::regroup(
+        g,
+        model,
+        transforms,
+        inertias,
+        |i| build(i).concat(),
+    ));
+    let two = g.constant(2.0);
+    let mut jacobian: Vec<Vec<Node>> = c
+        .iter()
+        .map(|row| row.iter().map(|&x| g.mul(two, x)).collect())
+        .collect();
+    // Damping b q̇ on each (one-coordinate) joint, as the backward sweep adds it.
+    for body in &model.bodies {
+        let k = body.joint.idx_v;
+        let damping = crate::expand::geometry::value(g, &body.joint.damping);
+        jacobian[k][k] = g.add(jacobian[k][k], damping);
+    }
+    jacobian
+}
+
+/// ∂τ/∂x for the derivative outputs: forward mode, but ∂τ/∂q̇ by `velocity` (`v`: the
+/// velocity inputs `tau` was expanded on).
+fn inverse_dynamics_jacobian(
+    g: &Graph,
+    model: &Model,
+    (transforms, inertias): (&[JointTransform], &[BodyInertia]),
+    (tau, v): (&[Node], &[Node]),
+    with: With,
+    velocity: VelocityColumns,
+) -> Vec<Vec<Node>> {
+    if with == With::Array(Array::V) && velocity == VelocityColumns::Coriolis {
+        velocity_jacobian_by_coriolis(g, model, transforms, inertias, v)
+    } else {
+        derivatives::jacobian(g, model, tau, with)
+    }
+}
+
 /// What the derivative outputs differentiate with respect to, in order: q (tangent space),
 /// q̇, and the loads' inputs when the mechanism declares loads.
 fn derivative_inputs(model: &Model) -> Vec<With> {
@@ -448,30 +520,74 @@ const TANGENT_CONVENTION: &str = "Column j of a q-derivative is the derivative a
     frame, so its columns follow v, not the quaternion's four numbers).";
 
 fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
-    let (g, t, i) = fresh_graph(model);
-    let (v, a) = (
-        inputs(&g, Array::V, model.nv),
-        inputs(&g, Array::A, model.nv),
-    );
-    let sweep_inputs = SweepInputs {
-        velocity: &v,
-        acceleration: &a,
-        gravity: true,
-        loads: has_loads(model),
+    // ∂τ/∂q̇ by forward mode or as 2 C + diag(b), whichever costs fewer operations.
+    let expand = |velocity: VelocityColumns| {
+        let (g, t, i) = fresh_graph(model);
+        let (v, a) = (
+            inputs(&g, Array::V, model.nv),
+            inputs(&g, Array::A, model.nv),
+        );
+        let sweep_inputs = SweepInputs {
+            velocity: &v,
+            acceleration: &a,
+            gravity: true,
+            loads: has_loads(model),
+        };
+        let tau = joint_forces(&g, model, &t, &i, &sweep_inputs);
+        let output = Output::Tuple(
+            derivative_inputs(model)
+                .into_iter()
+                .map(|with| {
+                    Output::Matrix(inverse_dynamics_jacobian(
+                        &g,
+                        model,
+                        (&t, &i),
+                        (&tau, &v),
+                        with,
+                        velocity,
+                    ))
+                })
+                .collect(),
+        );
+        (g, output, velocity)
     };
-    let tau = joint_forces(&g, model, &t, &i, &sweep_inputs);
-    let output = state_jacobians(&g, model, &tau);
+    let cost =
+        |(g, output, _): &(Graph, Output, VelocityColumns)| weighted_cost(g, &output.nodes());
+    let mut candidates: Vec<_> = velocity_columns(model).into_iter().map(expand).collect();
+    let best = cheapest(&candidates, cost);
+    let (graph, output, velocity) = candidates.swap_remove(best);
+    let how = match velocity {
+        VelocityColumns::ForwardMode => {
+            "forward-mode differentiation of the Newton–Euler \
+                                         expansion"
+        }
+        VelocityColumns::Coriolis => {
+            "forward-mode differentiation of the Newton–Euler \
+                                      expansion for ∂τ/∂q, and ∂τ/∂q̇ = 2 C(q, q̇) + diag(b) \
+                                      (C the Christoffel-consistent Coriolis matrix)"
+        }
+    };
     Expanded {
-        graph: g,
+        graph,
         output,
         doc: format!(
             "Derivatives of inverse dynamics: (∂τ/∂q, ∂τ/∂q̇), each nv × nv (row i: τ_i), at \
-             (`q`, `v`, `a`); ∂τ/∂q̈ = M(q). By forward-mode differentiation of the \
-             Newton–Euler expansion (Pinocchio's `computeRNEADerivatives`). \
-             {TANGENT_CONVENTION}{}",
+             (`q`, `v`, `a`); ∂τ/∂q̈ = M(q). By {how}, the cheaper way for this mechanism \
+             (Pinocchio's `computeRNEADerivatives`). {TANGENT_CONVENTION}{}",
             load_derivatives_doc(model)
         ),
     }
+}
+
+/// The index of the candidate of least `cost`, the first of equal costs.
+fn cheapest<T>(candidates: &[T], cost: impl Fn(&T) -> usize) -> usize {
+    let mut best = 0;
+    for (k, candidate) in candidates.iter().enumerate() {
+        if cost(candidate) < cost(&candidates[best]) {
+            best = k;
+        }
+    }
+    best
 }
 
 fn forward_dynamics_derivatives(model: &Model) -> Expanded {
@@ -487,19 +603,30 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
             "forward-mode differentiation of the forward-dynamics expansion",
         )
     };
-    let chain = |method: ForwardMethod| {
+    let chain = |method: ForwardMethod, velocity: VelocityColumns| {
         let (g, t, i) = fresh_graph(model);
-        let output = forward_dynamics_derivatives_by_chain_rule(&g, &t, &i, model, method);
-        let how = match method {
-            ForwardMethod::ArticulatedBody => {
+        let output =
+            forward_dynamics_derivatives_by_chain_rule(&g, &t, &i, model, method, velocity);
+        let how = match (method, velocity) {
+            (ForwardMethod::ArticulatedBody, VelocityColumns::ForwardMode) => {
                 "the chain rule through inverse dynamics, ∂q̈/∂x = −M⁻¹ ∂τ/∂x at q̈ \
                  (forward-mode derivatives of Newton–Euler, then tree-sparse LDLᵀ solves; q̈ \
                  by the articulated-body algorithm)"
             }
-            ForwardMethod::MassMatrixLdlt => {
+            (ForwardMethod::MassMatrixLdlt, VelocityColumns::ForwardMode) => {
                 "the chain rule through inverse dynamics, ∂q̈/∂x = −M⁻¹ ∂τ/∂x at q̈ \
                  (forward-mode derivatives of Newton–Euler, then tree-sparse LDLᵀ solves; q̈ \
                  by the same factorization)"
+            }
+            (ForwardMethod::ArticulatedBody, VelocityColumns::Coriolis) => {
+                "the chain rule through inverse dynamics, ∂q̈/∂x = −M⁻¹ ∂τ/∂x at q̈ \
+                 (forward-mode derivatives of Newton–Euler for ∂τ/∂q, ∂τ/∂q̇ = 2 C(q, q̇) + \
+                 diag(b), then tree-sparse LDLᵀ solves; q̈ by the articulated-body algorithm)"
+            }
+            (ForwardMethod::MassMatrixLdlt, VelocityColumns::Coriolis) => {
+                "the chain rule through inverse dynamics, ∂q̈/∂x = −M⁻¹ ∂τ/∂x at q̈ \
+                 (forward-mode derivatives of Newton–Euler for ∂τ/∂q, ∂τ/∂q̇ = 2 C(q, q̇) + \
+                 diag(b), then tree-sparse LDLᵀ solves; q̈ by the same factorization)"
             }
         };
         (g, output, how)
@@ -508,16 +635,18 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
     // The solves factor M anyway, so q̈ by that factorization can be the cheaper chain even
     // where the articulated-body algorithm is cheaper alone (the 35-dof g1 humanoid: 6 %
     // fewer operations): both are tried. The first of equal costs is kept.
-    let mut candidates = vec![direct, chain(method)];
+    // ∂τ/∂q̇ by forward mode or as 2 C + diag(b): both where both exist.
+    let mut methods = vec![method];
     if method == ForwardMethod::ArticulatedBody {
-        candidates.push(chain(ForwardMethod::MassMatrixLdlt));
+        methods.push(ForwardMethod::MassMatrixLdlt);
     }
-    let mut best = 0;
-    for (k, candidate) in candidates.iter().enumerate() {
-        if cost(candidate) < cost(&candidates[best]) {
-            best = k;
+    let mut candidates = vec![direct];
+    for velocity in velocity_columns(model) {
+        for &method in &methods {
+            candidates.push(chain(method, velocity));
         }
     }
+    let best = cheapest(&candidates, cost);
     let (graph, output, how) = candidates.swap_remove(best);
     Expanded {
         graph,
@@ -540,6 +669,7 @@ fn forward_dynamics_derivatives_by_chain_rule(
     i: &[BodyInertia],
     model: &Model,
     method: ForwardMethod,
+    velocity: VelocityColumns,
 ) -> Output {
     let nv = model.nv;
     let qdd = forward_dynamics_on(g, t, i, model, method);
@@ -553,7 +683,7 @@ fn forward_dynamics_derivatives_by_chain_rule(
     let tau = joint_forces(g, model, t, i, &sweep_inputs);
     let m = regrouped_mass_matrix(g, model, t, i);
     let solved = |with: With| {
-        let rows = derivatives::jacobian(g, model, &tau, with);
+        let rows = inverse_dynamics_jacobian(g, model, (t, i), (&tau, &v), with, velocity);
         let width = rows.first().map_or(0, Vec::len);
         let flat: Vec<Node> = rows.into_iter().flatten().collect();
         let at_qdd = g.substitute(&flat, |r| {
@@ -1493,5 +1623,35 @@ pub(crate) mod tests {
         };
         assert!(doc("forward_dynamics").contains("articulated-body algorithm"));
         assert!(doc("forward_dynamics_derivatives").contains("q̈ by the same factorization"));
+    }
+
+    /// ∂τ/∂q̇ as 2 C + diag(b) where that is cheaper (a spatial arm), never with a free
+    /// joint (the free chain above); the values are checked in tests/generated_derivatives.rs
+    /// and against Pinocchio's for the Panda.
+    #[test]
+    fn velocity_columns_by_the_coriolis_matrix_only_without_free_joints() {
+        let doc = |functions: &[Function], name: &str| {
+            functions
+                .iter()
+                .find(|f| f.spec.name == name)
+                .map(|f| f.spec.doc.clone())
+                .expect("generated")
+        };
+        let arm = compile(chain(
+            7,
+            true,
+            quote!([inverse_dynamics_derivatives, forward_dynamics_derivatives]),
+        ));
+        assert!(doc(&arm, "inverse_dynamics_derivatives").contains("2 C(q, q̇) + diag(b)"));
+        assert!(doc(&arm, "forward_dynamics_derivatives").contains("2 C(q, q̇) +"));
+        let free = compile(quote! {
+            struct Floating;
+            outputs: [inverse_dynamics_derivatives];
+            body base { mass: 2.0, inertia: diag([0.05, 0.04, 0.03]) }
+            body arm { mass: 1.0, com: [0.2, 0.0, 0.0], inertia: diag([0.01, 0.02, 0.02]) }
+            joint float: free(ground -> base);
+            joint hinge: revolute(base -> arm) { axis: z, at: [0.1, 0.0, 0.0] }
+        });
+        assert!(!doc(&free, "inverse_dynamics_derivatives").contains("2 C(q, q̇)"));
     }
 }
