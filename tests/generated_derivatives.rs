@@ -602,11 +602,11 @@ mechanism! {
     joint joint0: revolute(pelvis -> link0) { axis: x, at: [0.0, 0.1, -0.1] }
     joint joint1: revolute(link0 -> link1) { axis: y, at: [0.02, 0.0, -0.2] }
     joint joint2: revolute(link1 -> link2) { axis: z, at: [0.02, 0.0, -0.2] }
-    joint joint3: revolute(link2 -> link3) { axis: x, at: [0.02, 0.0, -0.2] }
+    joint joint3: revolute(link2 -> link3) { axis: x, at: [0.02, 0.0, -0.2], damping: 0.3 }
     joint joint4: revolute(link3 -> link4) { axis: y, at: [0.02, 0.0, -0.2] }
     joint joint5: revolute(link4 -> link5) { axis: z, at: [0.02, 0.0, -0.2] }
     joint joint6: revolute(link5 -> link6) { axis: x, at: [0.02, 0.0, -0.2] }
-    joint joint7: revolute(link6 -> link7) { axis: y, at: [0.02, 0.0, -0.2] }
+    joint joint7: revolute(link6 -> link7) { axis: y, at: [0.02, 0.0, -0.2], damping: 0.7 }
     joint joint8: revolute(link7 -> link8) { axis: z, at: [0.02, 0.0, -0.2] }
     joint joint9: revolute(link8 -> link9) { axis: x, at: [0.02, 0.0, -0.2] }
     joint joint10: revolute(link9 -> link10) { axis: y, at: [0.02, 0.0, -0.2] }

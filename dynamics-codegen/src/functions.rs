@@ -23,7 +23,7 @@
 //! | `frame_placements(q)`, `frame_jacobians(q)`, `frame_jacobians_local(q)` | each operational frame's (R, p) in the world and its 6 × nv Jacobian, world-aligned at its origin or in its own axes (asked for by name) | [`frames`] |
 //! | `frame_velocities(q, v)`, `frame_acceleration_biases(q, v)` | each operational frame's [v; ω] and J̇ q̇, world axes at its origin (asked for by name) | [`frames`] + [`rnea`]'s forward sweep |
 //! | `centroidal_bias(q, v)` | Ȧ_G q̇ (asked for by name) | [`kinematics`] + [`rnea`]'s forward sweep |
-//! | `inverse_dynamics_derivatives(q, v, a)` | (∂τ/∂q, ∂τ/∂q̇), q in the tangent space (asked for by name) | [`rnea`] + [`derivatives`]; without free joints ∂τ/∂q̇ = 2 C + diag(b) by [`coriolis`] where that is cheaper |
+//! | `inverse_dynamics_derivatives(q, v, a)` | (∂τ/∂q, ∂τ/∂q̇), q in the tangent space (asked for by name) | [`rnea`] + [`derivatives`]; ∂τ/∂q̇ = 2 C + diag(b) by [`coriolis`] in the joint coordinates' columns where that is cheaper |
 //! | `forward_dynamics_derivatives(q, v, tau)` | (∂q̈/∂q, ∂q̈/∂q̇) (asked for by name) | the cheapest of: [`derivatives`] of `forward_dynamics`' expansion, or −M⁻¹ ∂τ/∂x by [`rnea`] + [`derivatives`] + [`ldlt`] solves with q̈ by `forward_dynamics`' method or by the solves' own factorization |
 //! | `mass_matrix_inverse(q)` | M(q)⁻¹ (asked for by name) | [`crba`] + [`ldlt`] |
 //! | `force_analysis(q, v, a)` | every reaction component and driving effort, with the pivots of R | [`statics`] + [`qr`] |
@@ -426,15 +426,16 @@ fn state_jacobians(g: &Graph, model: &Model, outputs: &[Node]) -> Output {
 enum VelocityColumns {
     /// Forward-mode differentiation of Newton–Euler, like the other columns.
     ForwardMode,
-    /// 2 C(q, q̇) + diag(b) ([`velocity_jacobian_by_coriolis`]): joint coordinates only.
+    /// 2 C(q, q̇) + diag(b) ([`velocity_jacobian_by_coriolis`]) in the columns of joint
+    /// coordinates; forward mode in a free joint's.
     Coriolis,
 }
 
-/// The ways ∂τ/∂q̇ can be expanded for `model`: forward mode always, 2 C + diag(b) when
-/// every coordinate is a joint coordinate (no free joint).
+/// The ways ∂τ/∂q̇ can be expanded for `model`: forward mode always, 2 C + diag(b) in the
+/// columns of joint coordinates when there are any.
 fn velocity_columns(model: &Model) -> Vec<VelocityColumns> {
     let mut ways = vec![VelocityColumns::ForwardMode];
-    if model.bodies.iter().all(|b| b.joint.kind != JointKind::Free) {
+    if model.bodies.iter().any(|b| b.joint.kind != JointKind::Free) {
         ways.push(VelocityColumns::Coriolis);
     }
     ways
@@ -444,9 +445,11 @@ fn velocity_columns(model: &Model) -> Vec<VelocityColumns> {
 /// cheapest base parameters, as the `coriolis_matrix` output). With generalized
 /// coordinates, C_kj = Σ_i Γ_kij q̇_i for the Christoffel symbols Γ_kij, symmetric in i and
 /// j, so C(q, q̇) q̇ = Σ_ij Γ_kij q̇_i q̇_j and ∂(C q̇)_k/∂q̇_j = 2 Σ_i Γ_kij q̇_i = 2 C_kj;
-/// M(q) q̈, g(q) and the applied loads Q(q) do not depend on q̇, and damping adds b. Not
-/// for a free joint: its velocities are the body's twist, not the derivatives of
-/// coordinates, and C q̇ is not a symmetric form in them.
+/// M(q) q̈, g(q) and the applied loads Q(q) do not depend on q̇, and damping adds b. A free
+/// joint's velocities are the body's twist, not derivatives of coordinates: Γ_kij is not
+/// symmetric when i and j are both twist components (the twists' commutator), so its six
+/// columns are left to forward mode by [`inverse_dynamics_jacobian`]; the columns of joint
+/// coordinates keep 2 C + b (tested on a free base carrying a 12-link chain).
 fn velocity_jacobian_by_coriolis(
     g: &Graph,
     model: &Model,
@@ -487,7 +490,23 @@ fn inverse_dynamics_jacobian(
     velocity: VelocityColumns,
 ) -> Vec<Vec<Node>> {
     if with == With::Array(Array::V) && velocity == VelocityColumns::Coriolis {
-        velocity_jacobian_by_coriolis(g, model, transforms, inertias, v)
+        let mut by_coriolis = velocity_jacobian_by_coriolis(g, model, transforms, inertias, v);
+        // A free joint's columns by forward mode (the others of that expansion go unused).
+        let free: Vec<usize> = model
+            .bodies
+            .iter()
+            .filter(|b| b.joint.kind == JointKind::Free)
+            .flat_map(|b| b.joint.idx_v..b.joint.idx_v + 6)
+            .collect();
+        if !free.is_empty() {
+            let forward = derivatives::jacobian(g, model, tau, with);
+            for (row, forward_row) in by_coriolis.iter_mut().zip(&forward) {
+                for &col in &free {
+                    row[col] = forward_row[col];
+                }
+            }
+        }
+        by_coriolis
     } else {
         derivatives::jacobian(g, model, tau, with)
     }
@@ -1623,13 +1642,16 @@ pub(crate) mod tests {
         };
         assert!(doc("forward_dynamics").contains("articulated-body algorithm"));
         assert!(doc("forward_dynamics_derivatives").contains("q̈ by the same factorization"));
+        // And ∂τ/∂q̇ by 2 C + diag(b) in the joints' columns, forward mode in the base's.
+        assert!(doc("forward_dynamics_derivatives").contains("2 C(q, q̇) +"));
     }
 
-    /// ∂τ/∂q̇ as 2 C + diag(b) where that is cheaper (a spatial arm), never with a free
-    /// joint (the free chain above); the values are checked in tests/generated_derivatives.rs
-    /// and against Pinocchio's for the Panda.
+    /// ∂τ/∂q̇ as 2 C + diag(b) where that is cheaper (a spatial arm; a free base carrying
+    /// a 12-link chain, in its joints' columns), forward mode where that is (a free body
+    /// carrying one link); the values are checked in tests/generated_derivatives.rs and
+    /// against Pinocchio's for the Panda.
     #[test]
-    fn velocity_columns_by_the_coriolis_matrix_only_without_free_joints() {
+    fn velocity_columns_by_the_coriolis_matrix_where_cheaper() {
         let doc = |functions: &[Function], name: &str| {
             functions
                 .iter()
