@@ -388,19 +388,28 @@ fn joint_forces(
         .tau
 }
 
-fn inverse_dynamics(model: &Model) -> Expanded {
-    let (g, t, i) = fresh_graph(model);
-    let (v, a) = (
-        inputs(&g, Array::V, model.nv),
-        inputs(&g, Array::A, model.nv),
-    );
+/// τ = ID(q, q̇, a) on the inputs `v` and `a` (with gravity and the loads), and the
+/// velocity inputs it was expanded on.
+fn inverse_dynamics_on(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    inertias: &[BodyInertia],
+) -> (Vec<Node>, Vec<Node>) {
+    let (v, a) = (inputs(g, Array::V, model.nv), inputs(g, Array::A, model.nv));
     let sweep_inputs = SweepInputs {
         velocity: &v,
         acceleration: &a,
         gravity: true,
         loads: has_loads(model),
     };
-    let tau = joint_forces(&g, model, &t, &i, &sweep_inputs);
+    let tau = joint_forces(g, model, transforms, inertias, &sweep_inputs);
+    (tau, v)
+}
+
+fn inverse_dynamics(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let (tau, _) = inverse_dynamics_on(&g, model, &t, &i);
     Expanded {
         graph: g,
         output: Output::Vector(tau),
@@ -542,17 +551,7 @@ fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
     // ∂τ/∂q̇ by forward mode or as 2 C + diag(b), whichever costs fewer operations.
     let expand = |velocity: VelocityColumns| {
         let (g, t, i) = fresh_graph(model);
-        let (v, a) = (
-            inputs(&g, Array::V, model.nv),
-            inputs(&g, Array::A, model.nv),
-        );
-        let sweep_inputs = SweepInputs {
-            velocity: &v,
-            acceleration: &a,
-            gravity: true,
-            loads: has_loads(model),
-        };
-        let tau = joint_forces(&g, model, &t, &i, &sweep_inputs);
+        let (tau, v) = inverse_dynamics_on(&g, model, &t, &i);
         let output = Output::Tuple(
             derivative_inputs(model)
                 .into_iter()
@@ -692,14 +691,7 @@ fn forward_dynamics_derivatives_by_chain_rule(
 ) -> Output {
     let nv = model.nv;
     let qdd = forward_dynamics_on(g, t, i, model, method);
-    let (v, a) = (inputs(g, Array::V, nv), inputs(g, Array::A, nv));
-    let sweep_inputs = SweepInputs {
-        velocity: &v,
-        acceleration: &a,
-        gravity: true,
-        loads: has_loads(model),
-    };
-    let tau = joint_forces(g, model, t, i, &sweep_inputs);
+    let (tau, v) = inverse_dynamics_on(g, model, t, i);
     let m = regrouped_mass_matrix(g, model, t, i);
     let solved = |with: With| {
         let rows = inverse_dynamics_jacobian(g, model, (t, i), (&tau, &v), with, velocity);
