@@ -450,21 +450,20 @@ fn velocity_columns(model: &Model) -> Vec<VelocityColumns> {
     ways
 }
 
-/// ∂τ/∂q̇ = 2 C(q, q̇) + diag(b), C the Christoffel-consistent Coriolis matrix (over its
-/// cheapest base parameters, as the `coriolis_matrix` output). With generalized
-/// coordinates, C_kj = Σ_i Γ_kij q̇_i for the Christoffel symbols Γ_kij, symmetric in i and
-/// j, so C(q, q̇) q̇ = Σ_ij Γ_kij q̇_i q̇_j and ∂(C q̇)_k/∂q̇_j = 2 Σ_i Γ_kij q̇_i = 2 C_kj;
-/// M(q) q̈, g(q) and the applied loads Q(q) do not depend on q̇, and damping adds b. A free
-/// joint's velocities are the body's twist, not derivatives of coordinates: Γ_kij is not
-/// symmetric when i and j are both twist components (the twists' commutator), so its six
-/// columns are left to forward mode by [`inverse_dynamics_jacobian`]; the columns of joint
-/// coordinates keep 2 C + b (tested on a free base carrying a 12-link chain).
+/// ∂τ/∂q̇ with the columns of joint coordinates = 2 C(q, q̇) + diag(b), C the
+/// Christoffel-consistent Coriolis matrix (over its cheapest base parameters, as the
+/// `coriolis_matrix` output). With generalized coordinates, C_kj = Σ_i Γ_kij q̇_i for the
+/// Christoffel symbols Γ_kij, symmetric in i and j, so C(q, q̇) q̇ = Σ_ij Γ_kij q̇_i q̇_j and
+/// ∂(C q̇)_k/∂q̇_j = 2 Σ_i Γ_kij q̇_i = 2 C_kj; M(q) q̈, g(q) and the applied loads Q(q) do
+/// not depend on q̇, and damping adds b. A free joint's velocities are the body's twist, not
+/// derivatives of coordinates: Γ_kij is not symmetric when i and j are both twist
+/// components (the twists' commutator), so its six columns are forward-mode derivatives of
+/// `tau` (tested on a free base carrying a 12-link chain).
 fn velocity_jacobian_by_coriolis(
     g: &Graph,
     model: &Model,
-    transforms: &[JointTransform],
-    inertias: &[BodyInertia],
-    v: &[Node],
+    (transforms, inertias): (&[JointTransform], &[BodyInertia]),
+    (tau, v): (&[Node], &[Node]),
 ) -> Vec<Vec<Node>> {
     let build = |i: &[BodyInertia]| coriolis::coriolis_matrix(g, model, transforms, i, v);
     let c = build(&base_parameters::regroup(
@@ -479,11 +478,20 @@ fn velocity_jacobian_by_coriolis(
         .iter()
         .map(|row| row.iter().map(|&x| g.mul(two, x)).collect())
         .collect();
-    // Damping b q̇ on each (one-coordinate) joint, as the backward sweep adds it.
     for body in &model.bodies {
         let k = body.joint.idx_v;
-        let damping = crate::expand::geometry::value(g, &body.joint.damping);
-        jacobian[k][k] = g.add(jacobian[k][k], damping);
+        if body.joint.kind == JointKind::Free {
+            for col in k..k + 6 {
+                let forward = derivatives::column(g, model, tau, With::Array(Array::V), col);
+                for (row, entry) in jacobian.iter_mut().zip(forward) {
+                    row[col] = entry;
+                }
+            }
+        } else {
+            // Damping b q̇ on the joint's one coordinate, as the backward sweep adds it.
+            let damping = crate::expand::geometry::value(g, &body.joint.damping);
+            jacobian[k][k] = g.add(jacobian[k][k], damping);
+        }
     }
     jacobian
 }
@@ -493,29 +501,13 @@ fn velocity_jacobian_by_coriolis(
 fn inverse_dynamics_jacobian(
     g: &Graph,
     model: &Model,
-    (transforms, inertias): (&[JointTransform], &[BodyInertia]),
+    expansion: (&[JointTransform], &[BodyInertia]),
     (tau, v): (&[Node], &[Node]),
     with: With,
     velocity: VelocityColumns,
 ) -> Vec<Vec<Node>> {
     if with == With::Array(Array::V) && velocity == VelocityColumns::Coriolis {
-        let mut by_coriolis = velocity_jacobian_by_coriolis(g, model, transforms, inertias, v);
-        // A free joint's columns by forward mode (the others of that expansion go unused).
-        let free: Vec<usize> = model
-            .bodies
-            .iter()
-            .filter(|b| b.joint.kind == JointKind::Free)
-            .flat_map(|b| b.joint.idx_v..b.joint.idx_v + 6)
-            .collect();
-        if !free.is_empty() {
-            let forward = derivatives::jacobian(g, model, tau, with);
-            for (row, forward_row) in by_coriolis.iter_mut().zip(&forward) {
-                for &col in &free {
-                    row[col] = forward_row[col];
-                }
-            }
-        }
-        by_coriolis
+        velocity_jacobian_by_coriolis(g, model, expansion, (tau, v))
     } else {
         derivatives::jacobian(g, model, tau, with)
     }
@@ -597,15 +589,11 @@ fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
     }
 }
 
-/// The index of the candidate of least `cost`, the first of equal costs.
+/// The index of the candidate of least `cost` (each costed once), the first of equal costs.
 fn cheapest<T>(candidates: &[T], cost: impl Fn(&T) -> usize) -> usize {
-    let mut best = 0;
-    for (k, candidate) in candidates.iter().enumerate() {
-        if cost(candidate) < cost(&candidates[best]) {
-            best = k;
-        }
-    }
-    best
+    (0..candidates.len())
+        .min_by_key(|&k| cost(&candidates[k]))
+        .unwrap_or(0)
 }
 
 fn forward_dynamics_derivatives(model: &Model) -> Expanded {
@@ -618,42 +606,34 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
         (
             g,
             output,
-            "forward-mode differentiation of the forward-dynamics expansion",
+            "forward-mode differentiation of the forward-dynamics expansion".to_owned(),
         )
     };
     let chain = |method: ForwardMethod, velocity: VelocityColumns| {
         let (g, t, i) = fresh_graph(model);
         let output =
             forward_dynamics_derivatives_by_chain_rule(&g, &t, &i, model, method, velocity);
-        let how = match (method, velocity) {
-            (ForwardMethod::ArticulatedBody, VelocityColumns::ForwardMode) => {
-                "the chain rule through inverse dynamics, ∂q̈/∂x = −M⁻¹ ∂τ/∂x at q̈ \
-                 (forward-mode derivatives of Newton–Euler, then tree-sparse LDLᵀ solves; q̈ \
-                 by the articulated-body algorithm)"
-            }
-            (ForwardMethod::MassMatrixLdlt, VelocityColumns::ForwardMode) => {
-                "the chain rule through inverse dynamics, ∂q̈/∂x = −M⁻¹ ∂τ/∂x at q̈ \
-                 (forward-mode derivatives of Newton–Euler, then tree-sparse LDLᵀ solves; q̈ \
-                 by the same factorization)"
-            }
-            (ForwardMethod::ArticulatedBody, VelocityColumns::Coriolis) => {
-                "the chain rule through inverse dynamics, ∂q̈/∂x = −M⁻¹ ∂τ/∂x at q̈ \
-                 (forward-mode derivatives of Newton–Euler for ∂τ/∂q, ∂τ/∂q̇ = 2 C(q, q̇) + \
-                 diag(b), then tree-sparse LDLᵀ solves; q̈ by the articulated-body algorithm)"
-            }
-            (ForwardMethod::MassMatrixLdlt, VelocityColumns::Coriolis) => {
-                "the chain rule through inverse dynamics, ∂q̈/∂x = −M⁻¹ ∂τ/∂x at q̈ \
-                 (forward-mode derivatives of Newton–Euler for ∂τ/∂q, ∂τ/∂q̇ = 2 C(q, q̇) + \
-                 diag(b), then tree-sparse LDLᵀ solves; q̈ by the same factorization)"
+        let tau_by = match velocity {
+            VelocityColumns::ForwardMode => "forward-mode derivatives of Newton–Euler",
+            VelocityColumns::Coriolis => {
+                "forward-mode derivatives of Newton–Euler for ∂τ/∂q, ∂τ/∂q̇ = 2 C(q, q̇) + diag(b)"
             }
         };
+        let qdd_by = match method {
+            ForwardMethod::ArticulatedBody => "the articulated-body algorithm",
+            ForwardMethod::MassMatrixLdlt => "the same factorization",
+        };
+        let how = format!(
+            "the chain rule through inverse dynamics, ∂q̈/∂x = −M⁻¹ ∂τ/∂x at q̈ ({tau_by}, then \
+             tree-sparse LDLᵀ solves; q̈ by {qdd_by})"
+        );
         (g, output, how)
     };
-    let cost = |(g, output, _): &(Graph, Output, &str)| weighted_cost(g, &output.nodes());
+    let cost = |(g, output, _): &(Graph, Output, String)| weighted_cost(g, &output.nodes());
     // The solves factor M anyway, so q̈ by that factorization can be the cheaper chain even
     // where the articulated-body algorithm is cheaper alone (the 35-dof g1 humanoid: 6 %
-    // fewer operations): both are tried. The first of equal costs is kept.
-    // ∂τ/∂q̇ by forward mode or as 2 C + diag(b): both where both exist.
+    // fewer operations): both are tried, each with ∂τ/∂q̇ by forward mode and as 2 C +
+    // diag(b) where both exist. The first of equal costs is kept.
     let mut methods = vec![method];
     if method == ForwardMethod::ArticulatedBody {
         methods.push(ForwardMethod::MassMatrixLdlt);

@@ -96,18 +96,23 @@ pub fn jacobian(g: &Graph, model: &Model, outputs: &[Node], with: With) -> Vec<V
         With::Configuration | With::Array(_) => model.nv,
     };
     let columns: Vec<Vec<Node>> = (0..count)
-        .map(|col| match with {
-            With::Configuration => g.derivative(outputs, configuration_tangent(g, model, col)),
-            With::Array(array) => g.derivative(outputs, |r| {
-                if r.array == array && r.index as usize == col {
-                    g.one()
-                } else {
-                    g.zero()
-                }
-            }),
-        })
+        .map(|col| column(g, model, outputs, with, col))
         .collect();
     (0..outputs.len())
         .map(|row| columns.iter().map(|column| column[row]).collect())
         .collect()
+}
+
+/// Column `col` of [`jacobian`]: ∂outputs/∂x_col, one entry per output.
+pub fn column(g: &Graph, model: &Model, outputs: &[Node], with: With, col: usize) -> Vec<Node> {
+    match with {
+        With::Configuration => g.derivative(outputs, configuration_tangent(g, model, col)),
+        With::Array(array) => g.derivative(outputs, |r| {
+            if r.array == array && r.index as usize == col {
+                g.one()
+            } else {
+                g.zero()
+            }
+        }),
+    }
 }
