@@ -24,9 +24,8 @@ use dynamics_runtime::{batch, Mechanism};
 use models::anchors::Ur5;
 use models::quadruped::Quadruped;
 use rayon::prelude::*;
-use std::cell::RefCell;
 use std::hint::black_box;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// States per measured iteration.
 const N: usize = 4096;
@@ -40,6 +39,9 @@ const QUAD_NL: usize = <Quadruped as Mechanism>::NUM_LOAD_INPUTS;
 
 #[path = "support/states.rs"]
 mod states;
+#[path = "support/timing.rs"]
+#[allow(dead_code)] // `ids`, which lanes.rs's table walks
+mod timing;
 use states::States;
 
 /// `out[i] = f(i)` for every state, one call each, in blocks of [`BLOCK`] states over the
@@ -52,11 +54,6 @@ fn each_state<O: Send>(out: &mut [O], f: impl Fn(usize) -> O + Sync) {
     });
 }
 
-thread_local! {
-    /// (id, seconds per iteration of each timed sample), in order.
-    static TIMES: RefCell<Vec<(String, Vec<f64>)>> = const { RefCell::new(Vec::new()) };
-}
-
 /// Times `f` (one iteration: all N states, run inside `pool`) as `<group>/<id>`.
 fn bench(
     g: &mut BenchmarkGroup<'_, WallTime>,
@@ -65,21 +62,7 @@ fn bench(
     pool: &rayon::ThreadPool,
     mut f: impl FnMut() + Send,
 ) {
-    let mut times = Vec::new();
-    g.bench_function(id, |b| {
-        b.iter_custom(|iters| {
-            let start = Instant::now();
-            for _ in 0..iters {
-                pool.install(&mut f);
-            }
-            let elapsed = start.elapsed();
-            times.push(elapsed.as_secs_f64() / iters as f64);
-            elapsed
-        })
-    });
-    if !times.is_empty() {
-        TIMES.with(|t| t.borrow_mut().push((format!("{group}/{id}"), times)));
-    }
+    timing::bench(g, group, id, || pool.install(&mut f));
 }
 
 /// One model's three functions, both variants, on 1 and 2 threads. The closures take
@@ -216,18 +199,7 @@ fn benches(c: &mut Criterion) {
 
 /// The table: millions of states per second, medians over the last 20 samples.
 fn table() {
-    let rate = |id: &str| {
-        TIMES.with(|t| {
-            t.borrow()
-                .iter()
-                .find(|(name, _)| name == id)
-                .map(|(_, times)| {
-                    let mut last: Vec<f64> = times.iter().rev().take(20).copied().collect();
-                    last.sort_by(f64::total_cmp);
-                    N as f64 / last[last.len() / 2] / 1e6
-                })
-        })
-    };
+    let rate = |id: &str| timing::median_of_last(id, 20).map(|s| N as f64 / s / 1e6);
     println!("\nmillions of states per second (median of 20 samples, {N} states each)\n");
     println!("| model | function | f64, 1 thread | f64, 2 threads | F64x4, 1 thread | F64x4, 2 threads |");
     println!("| --- | --- | ---: | ---: | ---: | ---: |");

@@ -24,14 +24,12 @@
 //! iterations) divided by 64. (With `--sample-size` on the command line the table still
 //! takes the last 30 timed calls of each benchmark.)
 
-use criterion::measurement::WallTime;
-use criterion::{BenchmarkGroup, Criterion, SamplingMode};
+use criterion::{Criterion, SamplingMode};
 use dynamics_runtime::{batch, isa, F64x4, Mechanism};
 use models::anchors::Ur5;
 use models::quadruped::Quadruped;
-use std::cell::RefCell;
 use std::hint::black_box;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// States per measured iteration.
 const N: usize = 64;
@@ -43,7 +41,10 @@ const QUAD_NL: usize = <Quadruped as Mechanism>::NUM_LOAD_INPUTS;
 
 #[path = "support/states.rs"]
 mod states;
+#[path = "support/timing.rs"]
+mod timing;
 use states::States;
+use timing::bench;
 
 fn to_f32<const K: usize>(x: &[[f64; K]]) -> Vec<[f32; K]> {
     x.iter().map(|x| x.map(|x| x as f32)).collect()
@@ -54,31 +55,6 @@ fn prepack<const K: usize>(x: &[[f64; K]]) -> Vec<[F64x4; K]> {
     x.chunks_exact(4)
         .map(|c| std::array::from_fn(|j| F64x4::from_fn(|k| c[k][j])))
         .collect()
-}
-
-thread_local! {
-    /// (id, ns per state of each timed call of `iter_custom`), in order.
-    static TIMES: RefCell<Vec<(String, Vec<f64>)>> = const { RefCell::new(Vec::new()) };
-}
-
-/// Times `f` (one iteration: all N states) under criterion as `<group>/<id>`, recording
-/// each of its calls' ns per state for the table.
-fn bench(g: &mut BenchmarkGroup<'_, WallTime>, group: &str, id: &str, mut f: impl FnMut()) {
-    let mut times = Vec::new();
-    g.bench_function(id, |b| {
-        b.iter_custom(|iters| {
-            let start = Instant::now();
-            for _ in 0..iters {
-                f();
-            }
-            let elapsed = start.elapsed();
-            times.push(elapsed.as_nanos() as f64 / (iters * N as u64) as f64);
-            elapsed
-        })
-    });
-    if !times.is_empty() {
-        TIMES.with(|t| t.borrow_mut().push((format!("{group}/{id}"), times)));
-    }
 }
 
 /// One model's three functions in the five variants. `$ids`, `$mm`, `$fds`: the calls
@@ -228,19 +204,11 @@ fn benches(c: &mut Criterion) {
 /// the calls before them are its warm-up), ns per state, as a table per model and function.
 fn table(samples: usize) {
     const VARIANTS: [&str; 5] = ["f64", "f64_baseline", "F64x4", "F64x4_prepacked", "F32x8"];
-    let medians: Vec<(String, f64)> = TIMES.with(|t| {
-        t.borrow()
-            .iter()
-            .map(|(id, times)| {
-                let mut last: Vec<f64> = times[times.len().saturating_sub(samples)..].to_vec();
-                last.sort_by(f64::total_cmp);
-                (
-                    id.clone(),
-                    last.get(last.len() / 2).copied().unwrap_or(f64::NAN),
-                )
-            })
-            .collect()
-    });
+    let ns_per_state = |id: &str| timing::median_of_last(id, samples).map(|s| s * 1e9 / N as f64);
+    let medians: Vec<(String, f64)> = timing::ids()
+        .into_iter()
+        .filter_map(|id| ns_per_state(&id).map(|ns| (id, ns)))
+        .collect();
     if medians.is_empty() {
         return;
     }
