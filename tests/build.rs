@@ -22,9 +22,12 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+#[path = "src/default_functions.rs"]
+mod default_functions;
 #[path = "src/split_mix.rs"]
 mod split_mix;
 
+use default_functions::DEFAULT_FUNCTIONS;
 use split_mix::SplitMix as Rng;
 
 #[derive(Clone, Copy, PartialEq)]
@@ -127,19 +130,6 @@ const TREES: [Spec; 10] = [
         friction: true,
         ..spec(30)
     },
-];
-
-/// The default outputs, as the generated functions' names.
-const DEFAULT_FUNCTIONS: [&str; 9] = [
-    "inverse_dynamics",
-    "gravity",
-    "bias",
-    "mass_matrix",
-    "coriolis_matrix",
-    "forward_dynamics",
-    "kinetic_energy",
-    "potential_energy",
-    "joint_reactions",
 ];
 
 /// Nominal value of `m_tip`.
@@ -418,7 +408,10 @@ fn frame_tree(name: &str, joints: usize, free_root: bool, rng: &mut Rng) -> Stri
 const FRAME_TREES: [(usize, bool); 4] = [(3, false), (8, true), (14, false), (22, true)];
 
 fn main() {
-    println!("cargo:rerun-if-changed=build.rs");
+    // This file and the two it includes.
+    for file in ["build.rs", "src/default_functions.rs", "src/split_mix.rs"] {
+        println!("cargo:rerun-if-changed={file}");
+    }
     let out = std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR");
     let out = Path::new(&out);
     let mut rng = Rng(0x7e57_7ee5_2026);

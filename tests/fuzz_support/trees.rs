@@ -16,6 +16,7 @@
 
 use dynamics_runtime::{BodySpec, Inertia, JointSpec, LoadSpec, ModelBuilder, GROUND};
 use dynamics_tests::random::SplitMix;
+use dynamics_tests::DEFAULT_FUNCTIONS;
 use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
 use std::fmt::Write as _;
 
@@ -382,19 +383,6 @@ pub struct Tree {
     loads: Vec<Load>,
     both_methods: bool,
 }
-
-/// The default outputs, as the generated functions' names.
-pub const DEFAULT_FUNCTIONS: [&str; 9] = [
-    "inverse_dynamics",
-    "gravity",
-    "bias",
-    "mass_matrix",
-    "coriolis_matrix",
-    "forward_dynamics",
-    "kinetic_energy",
-    "potential_energy",
-    "joint_reactions",
-];
 
 impl Tree {
     /// The tree `seed` draws with `features`.

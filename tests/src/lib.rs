@@ -8,7 +8,10 @@ use nalgebra::{DMatrix, Matrix3, Rotation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 use serde::Deserialize;
 
+mod default_functions;
 mod split_mix;
+
+pub use default_functions::DEFAULT_FUNCTIONS;
 
 /// The 20 samples of Pinocchio's values in `tests/data/pinocchio_ext/<name>_<kind>.json`
 /// (`kind`: `kinematics`, `frames`, `derivatives`), each read as an `S`. Panics with the
