@@ -648,8 +648,13 @@ pub(crate) fn welded_groups(
             }
         }
     }
-    // The root first, then the bodies welded to it in declaration order.
-    for group in &mut groups {
+    root_first(&mut groups);
+    groups
+}
+
+/// Each group's root first, then the bodies welded to it in declaration order.
+fn root_first(groups: &mut [WeldedGroup]) {
+    for group in groups {
         if let Some(k) = group
             .members
             .iter()
@@ -659,7 +664,6 @@ pub(crate) fn welded_groups(
             group.members.insert(0, root);
         }
     }
-    groups
 }
 
 /// The mass, mass centre and I_G of parts (mass, mass centre, I_G, each in one common
@@ -1360,17 +1364,7 @@ mod tests {
                 }),
             }
         }
-        // The root first, then the bodies welded to it in declaration order.
-        for group in &mut groups {
-            if let Some(k) = group
-                .members
-                .iter()
-                .position(|m| Some(m.body) == group.root)
-            {
-                let root = group.members.remove(k);
-                group.members.insert(0, root);
-            }
-        }
+        root_first(&mut groups);
         groups
     }
 
