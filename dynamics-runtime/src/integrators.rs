@@ -211,6 +211,7 @@ pub fn implicit_midpoint<M: Dynamics<f64>>(
         }
         v_mid
     };
+    // F(w), and the midpoint state (q ⊕ v̄ dt/2, v̄) it was evaluated at.
     let residual = |w: &M::Velocity| {
         let v_mid = midpoint(w);
         let q_mid = M::integrate(&s.q, &v_mid, 0.5 * dt);
@@ -219,16 +220,14 @@ pub fn implicit_midpoint<M: Dynamics<f64>>(
         for (k, fk) in f.as_mut().iter_mut().enumerate() {
             *fk = w.as_ref()[k] - s.v.as_ref()[k] - dt * a.as_ref()[k];
         }
-        f
+        (f, q_mid, v_mid)
     };
     // Start from the explicit Euler guess.
     let mut w = axpy(&s.v, dt, &acceleration(&s.q, &s.v, inputs));
     let mut last_change = f64::INFINITY;
     for _ in 0..max_iterations {
-        let f = residual(&w);
+        let (f, q_mid, v_mid) = residual(&w);
         let n = f.as_ref().len();
-        let v_mid = midpoint(&w);
-        let q_mid = M::integrate(&s.q, &v_mid, 0.5 * dt);
         let exact = M::acceleration_derivatives(
             &q_mid,
             &v_mid,
@@ -251,7 +250,7 @@ pub fn implicit_midpoint<M: Dynamics<f64>>(
                 let h = 1e-7 * (1.0 + w.as_ref()[k].abs());
                 let mut shifted = w;
                 shifted.as_mut()[k] += h;
-                let f_shifted = residual(&shifted);
+                let (f_shifted, _, _) = residual(&shifted);
                 for i in 0..n {
                     jacobian.as_mut()[i].as_mut()[k] = (f_shifted.as_ref()[i] - f.as_ref()[i]) / h;
                 }
