@@ -148,7 +148,8 @@ EOF
   # The machine code of each generated function, from the benchmark binary's symbols (v0
   # mangling names the function each kernel copy was instantiated for).
   # The newest: earlier builds of the same crate leave their binaries beside it.
-  BIN="$(ls -t $(find "$CRATE/target/release/deps" -maxdepth 1 -type f -executable -name 'public-*') | head -1)"
+  BIN="$(find "$CRATE/target/release/deps" -maxdepth 1 -type f -executable -name 'public-*' \
+    -printf '%T@ %p\n' | sort -rn | head -1 | cut -d' ' -f2-)"
   nm -S --size-sort -C "$BIN" | grep 'public_robot::Robot>::' > "$CRATE/code-size.txt" || true
 
   LOAD="$(cut -d' ' -f1-3 /proc/loadavg)"
