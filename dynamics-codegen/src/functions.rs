@@ -24,7 +24,7 @@
 //! | `frame_velocities(q, v)`, `frame_acceleration_biases(q, v)` | each operational frame's [v; ω] and J̇ q̇, world axes at its origin (asked for by name) | [`frames`] + [`rnea`]'s forward sweep |
 //! | `centroidal_bias(q, v)` | Ȧ_G q̇ (asked for by name) | [`kinematics`] + [`rnea`]'s forward sweep |
 //! | `inverse_dynamics_derivatives(q, v, a)` | (∂τ/∂q, ∂τ/∂q̇), q in the tangent space (asked for by name) | [`rnea`] + [`derivatives`]; ∂τ/∂q̇ = 2 C + diag(b) by [`coriolis`] in the joint coordinates' columns where that is cheaper |
-//! | `forward_dynamics_derivatives(q, v, tau)` | (∂q̈/∂q, ∂q̈/∂q̇) (asked for by name) | the cheapest of: [`derivatives`] of `forward_dynamics`' expansion, or −M⁻¹ ∂τ/∂x by [`rnea`] + [`derivatives`] + [`ldlt`] solves with q̈ by `forward_dynamics`' method or by the solves' own factorization |
+//! | `forward_dynamics_derivatives(q, v, tau)` | (∂q̈/∂q, ∂q̈/∂q̇) (asked for by name) | the cheapest of: [`derivatives`] of `forward_dynamics`' expansion, or −M⁻¹ ∂τ/∂x by [`rnea`] + [`derivatives`] + [`ldlt`] with q̈ by `forward_dynamics`' method or by the solves' own factorization, solved column by column in straight-line code or all columns at once by a loop (`dynamics_runtime::tree_ldlt`, SIMD across the columns) |
 //! | `mass_matrix_inverse(q)` | M(q)⁻¹ (asked for by name) | [`crba`] + [`ldlt`] |
 //! | `force_analysis(q, v, a)` | every reaction component and driving effort, with the pivots of R | [`statics`] + [`qr`] |
 //! | `constraint_residual(q)`, `constraint_jacobian(q)`, `constraint_bias(q, v)` | φ, Φ_q, γ of the loop closures | [`statics`] |
@@ -46,7 +46,7 @@ use crate::expand::rnea::{self, SweepInputs};
 use crate::expand::{
     aba, coriolis, crba, energy, fresh_graph, inputs, kinematics, ldlt, qr, statics,
 };
-use crate::ir::{Arg, Function, FunctionSpec, Output};
+use crate::ir::{Arg, Function, FunctionSpec, Output, TreeSolve};
 use crate::model::{JointKind, Model};
 use crate::passes::base_parameters;
 use crate::sym::{Array, Graph, Node, Vec3};
@@ -609,10 +609,19 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
             "forward-mode differentiation of the forward-dynamics expansion".to_owned(),
         )
     };
+    let cost = |g: &Graph, output: &Output| {
+        let loop_cost = match output {
+            Output::Solved(s) => s.loop_cost(),
+            _ => 0,
+        };
+        weighted_cost(g, &output.nodes()).saturating_add(loop_cost)
+    };
     let chain = |method: ForwardMethod, velocity: VelocityColumns| {
         let (g, t, i) = fresh_graph(model);
-        let output =
+        let mut outputs =
             forward_dynamics_derivatives_by_chain_rule(&g, &t, &i, model, method, velocity);
+        let best = cheapest(&outputs, |(output, _)| cost(&g, output));
+        let (output, solves) = outputs.swap_remove(best);
         let tau_by = match velocity {
             VelocityColumns::ForwardMode => "forward-mode derivatives of Newton–Euler",
             VelocityColumns::Coriolis => {
@@ -623,17 +632,21 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
             ForwardMethod::ArticulatedBody => "the articulated-body algorithm",
             ForwardMethod::MassMatrixLdlt => "the same factorization",
         };
+        let solves_by = match solves {
+            Solves::Unrolled => "tree-sparse LDLᵀ solves",
+            Solves::Loop => "a tree-sparse LDLᵀ solve of all columns at once, run as a loop",
+        };
         let how = format!(
             "the chain rule through inverse dynamics, ∂q̈/∂x = −M⁻¹ ∂τ/∂x at q̈ ({tau_by}, then \
-             tree-sparse LDLᵀ solves; q̈ by {qdd_by})"
+             {solves_by}; q̈ by {qdd_by})"
         );
         (g, output, how)
     };
-    let cost = |(g, output, _): &(Graph, Output, String)| weighted_cost(g, &output.nodes());
     // The solves factor M anyway, so q̈ by that factorization can be the cheaper chain even
     // where the articulated-body algorithm is cheaper alone (the 35-dof g1 humanoid: 6 %
     // fewer operations): both are tried, each with ∂τ/∂q̇ by forward mode and as 2 C +
-    // diag(b) where both exist. The first of equal costs is kept.
+    // diag(b) where both exist, and each with the cheaper of its two ways to solve. The
+    // first of equal costs is kept.
     let mut methods = vec![method];
     if method == ForwardMethod::ArticulatedBody {
         methods.push(ForwardMethod::MassMatrixLdlt);
@@ -644,7 +657,7 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
             candidates.push(chain(method, velocity));
         }
     }
-    let best = cheapest(&candidates, cost);
+    let best = cheapest(&candidates, |(g, output, _)| cost(g, output));
     let (graph, output, how) = candidates.swap_remove(best);
     Expanded {
         graph,
@@ -652,7 +665,8 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
         doc: format!(
             "Derivatives of forward dynamics: (∂q̈/∂q, ∂q̈/∂q̇), each nv × nv (row i: q̈_i), \
              at (`q`, `v`, `tau`); ∂q̈/∂τ = M(q)⁻¹ (`mass_matrix_inverse`). By {how}, the \
-             cheaper of two ways for this mechanism (Pinocchio's `computeABADerivatives`). \
+             cheapest of the ways tried for this mechanism (Pinocchio's \
+             `computeABADerivatives`). \
              {TANGENT_CONVENTION}{}",
             load_derivatives_doc(model)
         ),
@@ -660,7 +674,8 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
 }
 
 /// (∂q̈/∂q, ∂q̈/∂q̇) = −M⁻¹ (∂τ/∂q, ∂τ/∂q̇), the derivatives of τ = ID(q, q̇, a) taken at a
-/// free `a` and evaluated at a = q̈ = FD(q, q̇, τ).
+/// free `a` and evaluated at a = q̈ = FD(q, q̇, τ), in one graph both ways: solved column
+/// by column, and as the right-hand sides of one loop.
 fn forward_dynamics_derivatives_by_chain_rule(
     g: &Graph,
     t: &[JointTransform],
@@ -668,22 +683,31 @@ fn forward_dynamics_derivatives_by_chain_rule(
     model: &Model,
     method: ForwardMethod,
     velocity: VelocityColumns,
-) -> Output {
+) -> Vec<(Output, Solves)> {
     let nv = model.nv;
     let qdd = forward_dynamics_on(g, t, i, model, method);
     let (tau, v) = inverse_dynamics_on(g, model, t, i);
     let m = regrouped_mass_matrix(g, model, t, i);
-    let solved = |with: With| {
+    // ∂τ/∂x at a = q̈, by rows.
+    let jacobian = |with: With| {
         let rows = inverse_dynamics_jacobian(g, model, (t, i), (&tau, &v), with, velocity);
         let width = rows.first().map_or(0, Vec::len);
         let flat: Vec<Node> = rows.into_iter().flatten().collect();
         let at_qdd = g.substitute(&flat, |r| {
             (r.array == Array::A).then(|| qdd[r.index as usize])
         });
+        (0..nv)
+            .map(|r| at_qdd[r * width..(r + 1) * width].to_vec())
+            .collect::<Vec<Vec<Node>>>()
+    };
+    // Unrolled first, so that its nodes are numbered as they were before the loop existed;
+    // the loop's then add only its negations and the factor's reordering.
+    let solved = |b: &Vec<Vec<Node>>| {
+        let width = b.first().map_or(0, Vec::len);
         let columns: Vec<Vec<Node>> = (0..width)
             .map(|c| {
-                let rhs = (0..nv).map(|r| g.neg(at_qdd[r * width + c])).collect();
-                ldlt::solve(g, model, m.clone(), rhs)
+                let column = b.iter().map(|row| g.neg(row[c])).collect();
+                ldlt::solve(g, model, m.clone(), column)
             })
             .collect();
         Output::Matrix(
@@ -692,7 +716,37 @@ fn forward_dynamics_derivatives_by_chain_rule(
                 .collect(),
         )
     };
-    Output::Tuple(derivative_inputs(model).into_iter().map(solved).collect())
+    // Each Jacobian solved as soon as it is expanded (the order the nodes always had).
+    let (mut jacobians, mut unrolled) = (Vec::new(), Vec::new());
+    for with in derivative_inputs(model) {
+        let b = jacobian(with);
+        unrolled.push(solved(&b));
+        jacobians.push(b);
+    }
+    let unrolled = Output::Tuple(unrolled);
+    let (parents, factor, inverse_pivot) = ldlt::factor_rows(g, model, m);
+    let negated = |b: Vec<Vec<Node>>| {
+        b.into_iter()
+            .map(|row| row.into_iter().map(|x| g.neg(x)).collect())
+            .collect()
+    };
+    let by_loop = Output::Solved(TreeSolve {
+        parents,
+        factor,
+        inverse_pivot,
+        rhs: jacobians.into_iter().map(negated).collect(),
+    });
+    vec![(unrolled, Solves::Unrolled), (by_loop, Solves::Loop)]
+}
+
+/// How the chain rule of the forward-dynamics derivatives solves M X = −∂τ/∂x.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Solves {
+    /// One straight-line tree-sparse solve per column, skipping the zeros of each.
+    Unrolled,
+    /// A loop over all columns at once in the generated code (`dynamics_runtime::tree_ldlt`),
+    /// SIMD across the columns.
+    Loop,
 }
 
 fn mass_matrix_inverse(model: &Model) -> Expanded {
@@ -1616,6 +1670,75 @@ pub(crate) mod tests {
         assert!(doc("forward_dynamics_derivatives").contains("q̈ by the same factorization"));
         // And ∂τ/∂q̇ by 2 C + diag(b) in the joints' columns, forward mode in the base's.
         assert!(doc("forward_dynamics_derivatives").contains("2 C(q, q̇) +"));
+    }
+
+    /// The chain rule's solves run as one loop over all columns where that is cheaper (a free
+    /// base carrying a 12-link chain: 2 × 18 columns), as straight-line solves where not (a
+    /// 3-link arm), and both ways give the same values, the loop's evaluated as the
+    /// generated code runs it (`Output::values`). The generated loop is checked against
+    /// dual numbers in tests/generated_derivatives.rs and against Pinocchio for the Panda and
+    /// the quadruped.
+    #[test]
+    fn forward_dynamics_derivatives_solve_by_a_loop_where_cheaper() {
+        let bodies = (0..12).map(|i| {
+            let name = format_ident!("link{i}");
+            quote! { body #name { mass: 1.5, com: [0.01, 0.02, -0.1], inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0005], [0.0, 0.0005, 0.008]] } }
+        });
+        let joints = (0..12).map(|i| {
+            let (name, child) = (format_ident!("joint{i}"), format_ident!("link{i}"));
+            let parent = if i == 0 {
+                format_ident!("pelvis")
+            } else {
+                format_ident!("link{}", i - 1)
+            };
+            let axis = [quote!(x), quote!(y), quote!(z)][i % 3].clone();
+            quote! { joint #name: revolute(#parent -> #child) { axis: #axis, at: [0.02, 0.0, -0.2] } }
+        });
+        let tokens = quote! {
+            struct FreeChain;
+            outputs: [forward_dynamics_derivatives];
+            body pelvis { mass: 5.0, inertia: diag([0.05, 0.04, 0.03]) }
+            joint base: free(ground -> pelvis);
+            #(#bodies)*
+            #(#joints)*
+        };
+        let solved_by_loop = |functions: &[Function]| {
+            functions
+                .iter()
+                .any(|f| matches!(f.spec.output, Output::Solved(_)) && f.spec.doc.contains("loop"))
+        };
+        assert!(solved_by_loop(&compile(tokens.clone())));
+        assert!(!solved_by_loop(&compile(chain(
+            3,
+            true,
+            quote!([forward_dynamics_derivatives])
+        ))));
+
+        let mechanism: crate::syntax::Mechanism = syn::parse2(tokens).expect("parses");
+        let model = crate::model::lower(&mechanism).expect("valid");
+        let (g, t, i) = fresh_graph(&model);
+        let outputs = forward_dynamics_derivatives_by_chain_rule(
+            &g,
+            &t,
+            &i,
+            &model,
+            ForwardMethod::MassMatrixLdlt,
+            VelocityColumns::ForwardMode,
+        );
+        let input = |r: crate::sym::InputRef| {
+            let x = 0.3 + 0.17 * f64::from(r.index) + 0.05 * f64::from(r.array as u8);
+            if r.array == Array::Q && (3..7).contains(&r.index) {
+                0.5 // a unit quaternion
+            } else {
+                x.sin()
+            }
+        };
+        let [unrolled, by_loop] = [0, 1].map(|k| outputs[k].0.values(|n| g.eval(input, n)));
+        assert_eq!(unrolled.len(), 2 * 18 * 18);
+        assert_eq!(by_loop.len(), unrolled.len());
+        for (a, b) in unrolled.iter().zip(&by_loop) {
+            assert!((a - b).abs() <= 1e-12 * (1.0 + a.abs()), "{a} vs {b}");
+        }
     }
 
     /// ∂τ/∂q̇ as 2 C + diag(b) where that is cheaper (a spatial arm; a free base carrying

@@ -43,7 +43,7 @@ use quote::quote;
 use std::path::Path;
 
 /// The path under which generated code finds the runtime crate.
-fn runtime_path() -> TokenStream {
+pub(crate) fn runtime_path() -> TokenStream {
     quote!(::dynamics_runtime)
 }
 
@@ -87,7 +87,7 @@ impl Compiled {
                 let nodes = f.spec.output.nodes();
                 FunctionSummary {
                     name: f.spec.name.to_string(),
-                    ops: f.graph.op_count(&nodes),
+                    ops: f.op_count(),
                     longest_chain: f.graph.longest_chain(&nodes),
                 }
             })
@@ -128,7 +128,7 @@ impl Compiled {
                 .and_then(|(_, values)| values.get(r.index as usize).copied())
                 .unwrap_or(f64::NAN)
         };
-        Some(f.graph.eval(value, &f.spec.output.nodes()))
+        Some(f.spec.output.values(|nodes| f.graph.eval(value, nodes)))
     }
 }
 
@@ -223,7 +223,7 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
         .iter()
         .map(|f| declare::Cost {
             name: f.spec.name.to_string(),
-            ops: f.graph.op_count(&f.spec.output.nodes()),
+            ops: f.op_count(),
         })
         .collect();
     let declaration = declare::declare(&compiled.model, &costs, &runtime);

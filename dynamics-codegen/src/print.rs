@@ -72,7 +72,7 @@
 //! functions called in turn.
 //!
 
-use crate::ir::{FunctionSpec, Output};
+use crate::ir::{FunctionSpec, Output, TreeSolve};
 use crate::passes::fusion::Fused;
 use crate::schedule::{Plan, Step};
 use crate::sym::{Array, Graph, Node, Op, OpCount};
@@ -113,6 +113,10 @@ impl Output {
                 );
                 quote!([#item; #n])
             }
+            Output::Solved(s) => {
+                let tys = s.rhs.iter().map(|b| Output::Matrix(b.clone()).ty());
+                quote!((#(#tys,)*))
+            }
         }
     }
 
@@ -142,8 +146,76 @@ impl Output {
                 let exprs = items.iter().map(Output::expr);
                 quote!([#(#exprs),*])
             }
+            Output::Solved(s) => tree_solve_expr(s, false),
         }
     }
+
+    /// [`Output::expr`] at the end of a kernel, which may use its `WIDE` copy's choice.
+    fn expr_in_kernel(&self) -> TokenStream {
+        match self {
+            Output::Solved(s) => tree_solve_expr(s, true),
+            _ => self.expr(),
+        }
+    }
+}
+
+/// The block that solves an [`Output::Solved`]: the factor, the pivots and the right-hand
+/// sides bound to arrays, then `tree_ldlt::solve_columns` on the right-hand sides, those of
+/// one width together. Inside a kernel (`in_kernel`) it runs in the kernel's copy (`WIDE`);
+/// outside, in the copy `T::run_kernel` chooses.
+fn tree_solve_expr(s: &TreeSolve, in_kernel: bool) -> TokenStream {
+    let runtime = crate::runtime_path();
+    let n = Literal::usize_unsuffixed(s.parents.len());
+    let p = Literal::usize_unsuffixed(s.factor.len());
+    let parents = s.parents.iter().map(|parent| match parent {
+        Some(i) => {
+            let i = Literal::usize_unsuffixed(*i);
+            quote!(::core::option::Option::Some(#i))
+        }
+        None => quote!(::core::option::Option::None),
+    });
+    let factor = s.factor.iter().map(|&x| var(x));
+    let pivots = s.inverse_pivot.iter().map(|&x| var(x));
+    let width = |b: &Vec<Vec<Node>>| b.first().map_or(0, Vec::len);
+    let mut widths: Vec<usize> = s.rhs.iter().map(width).collect();
+    widths.dedup();
+    let widths: BTreeSet<usize> = widths.into_iter().collect();
+    let solved: Vec<Ident> = (0..s.rhs.len()).map(|k| format_ident!("x_{}", k)).collect();
+    let solves =
+        |wide: TokenStream| {
+            let groups = widths.iter().map(|&w| {
+            let members: Vec<usize> = (0..s.rhs.len()).filter(|&k| width(&s.rhs[k]) == w).collect();
+            let rhs = members.iter().map(|&k| Output::Matrix(s.rhs[k].clone()).expr());
+            let names = members.iter().map(|&k| &solved[k]);
+            let (c, k) = (Literal::usize_unsuffixed(w), Literal::usize_unsuffixed(members.len()));
+            quote! {
+                let [#(#names),*] = #runtime::tree_ldlt::solve_columns::<T, #wide, #n, #p, #c, #k>(
+                    &TREE, &factor, &inverse_pivot, [#(#rhs),*],
+                );
+            }
+        });
+            quote!(#(#groups)* (#(#solved,)*))
+        };
+    let run = if in_kernel {
+        solves(quote!(WIDE))
+    } else {
+        let (wide, narrow) = (solves(quote!(true)), solves(quote!(false)));
+        quote! {
+            T::run_kernel(
+                #[inline(always)]
+                || { #wide },
+                #[inline(always)]
+                || { #narrow },
+            )
+        }
+    };
+    quote!({
+        const TREE: #runtime::tree_ldlt::CoordinateTree<#n, #p> =
+            #runtime::tree_ldlt::CoordinateTree::new([#(#parents),*]);
+        let factor: [T; #p] = [#(#factor),*];
+        let inverse_pivot: [T; #n] = [#(#pivots),*];
+        #run
+    })
 }
 
 /// The function described by `spec`, its statements in the order and pieces of `plan`
@@ -151,14 +223,13 @@ impl Output {
 /// shape.
 #[must_use]
 pub(crate) fn function(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> TokenStream {
-    let outputs = spec.output.nodes();
     let ops = graph.ops();
     let trait_ = &spec.scalar_trait;
     let name = &spec.name;
     let vis = &spec.vis;
     let ret = spec.output.ty();
-    let count = graph.op_count(&outputs);
-    let docs = doc_attrs(&spec.doc, &count);
+    let count = crate::ir::op_count(graph, &spec.output);
+    let docs = doc_attrs(&spec.doc, &count, &spec.output);
 
     let read_by_output = |array: Array| {
         plan.hands_back
@@ -249,13 +320,21 @@ fn array_params(arrays: &BTreeSet<Array>, spec: &FunctionSpec) -> (Vec<TokenStre
         .unzip()
 }
 
-/// `#[doc]` attributes: the description, a blank line, and the op count.
-fn doc_attrs(doc: &str, count: &OpCount) -> Vec<TokenStream> {
+/// `#[doc]` attributes: the description, a blank line, and the op count (with the loop's
+/// share for an [`Output::Solved`]).
+fn doc_attrs(doc: &str, count: &OpCount, output: &Output) -> Vec<TokenStream> {
     let mut lines: Vec<String> = doc.lines().map(|l| format!(" {l}")).collect();
     if !lines.is_empty() {
         lines.push(String::new());
     }
-    lines.push(format!(" Op count: {count}."));
+    let of_which = match output {
+        Output::Solved(s) => {
+            let (mul, add) = s.loop_ops();
+            format!(" ({mul} mul and {add} add of them in the loop over columns)")
+        }
+        _ => String::new(),
+    };
+    lines.push(format!(" Op count: {count}{of_which}."));
     lines.iter().map(|l| quote!(#[doc = #l])).collect()
 }
 
@@ -289,7 +368,7 @@ impl Plan {
         stmts.extend(piece.steps.iter().map(|s| let_step(s, ops, &self.fused)));
 
         let result = if self.returns_output(p) {
-            output.expr()
+            output.expr_in_kernel()
         } else {
             let carry = self.pieces.get(p + 1).map(|next| {
                 let names = next.carry_in.iter().map(|&n| var(n));
@@ -349,11 +428,13 @@ impl Plan {
     /// when a fused product or a sine-cosine batch reads it.
     fn baseline_body(&self, ops: &[Op], p: usize, output: &Output) -> TokenStream {
         let body = self.piece_body(ops, p, output);
-        let reads_wide = self.pieces[p].steps.iter().any(|s| match s {
-            Step::Batch(_) => true,
-            Step::One(n) => self.fused.contains_key(n),
-            Step::SinCos { .. } => false,
-        });
+        let solves_here = self.returns_output(p) && matches!(output, Output::Solved(_));
+        let reads_wide = solves_here
+            || self.pieces[p].steps.iter().any(|s| match s {
+                Step::Batch(_) => true,
+                Step::One(n) => self.fused.contains_key(n),
+                Step::SinCos { .. } => false,
+            });
         if reads_wide {
             quote!(const WIDE: bool = false; #body)
         } else {
@@ -580,7 +661,7 @@ pub(crate) fn nalgebra_wrapper(spec: &FunctionSpec, nalgebra: &TokenStream) -> T
                 quote!(#nalgebra::SMatrix::<T, #c, #r>::from_array_storage(#nalgebra::ArrayStorage(#call)).transpose()),
             )
         }
-        Output::Tuple(_) | Output::Stack(_) => return TokenStream::new(),
+        Output::Tuple(_) | Output::Stack(_) | Output::Solved(_) => return TokenStream::new(),
     };
     let doc = format!(" [`Self::{name}`] with nalgebra vectors and matrices.");
     quote! {

@@ -53,6 +53,7 @@ mod model;
 mod reference;
 mod scalar;
 mod statics;
+pub mod tree_ldlt;
 
 pub use double_double::DoubleDouble;
 pub use dual::Dual;

@@ -40,6 +40,23 @@ pub fn solve(g: &Graph, model: &Model, m: Vec<Vec<Node>>, y: Vec<Node>) -> Vec<N
     solve_with_parents(g, &coordinate_parents(model), m, y)
 }
 
+/// The factorization M = Lᵀ D L for solving by a loop over many right-hand sides: the
+/// coordinate parents, L_ki row after row (each row's entries from k's parent towards the
+/// root) and 1 / D_k (consumes M).
+pub fn factor_rows(
+    g: &Graph,
+    model: &Model,
+    mut m: Vec<Vec<Node>>,
+) -> (Vec<Option<usize>>, Vec<Node>, Vec<Node>) {
+    let parents = coordinate_parents(model);
+    let inverse_pivot = factor(g, &parents, &mut m);
+    let rows = (0..m.len())
+        .flat_map(|k| std::iter::successors(parents[k], |&i| parents[i]).map(move |i| (k, i)))
+        .map(|(k, i)| m[k][i])
+        .collect();
+    (parents, rows, inverse_pivot)
+}
+
 /// Solves a dense symmetric system M x = y (a chain: every coordinate descends from the
 /// previous one), as the articulated-body algorithm needs for a multi-dof joint.
 pub fn solve_dense(g: &Graph, m: Vec<Vec<Node>>, y: Vec<Node>) -> Vec<Node> {
