@@ -1631,12 +1631,8 @@ pub(crate) mod tests {
         assert_eq!(order("mass_matrix"), ["q", "p"]);
     }
 
-    /// A free base carrying a 12-link spatial chain: forward dynamics by the
-    /// articulated-body algorithm, but its derivatives' chain rule takes q̈ from the LDLᵀ
-    /// factorization the solves need (fewer operations than with the articulated-body
-    /// algorithm beside it); the values are checked in tests/generated_derivatives.rs.
-    #[test]
-    fn forward_dynamics_derivatives_take_the_cheaper_chain() {
+    /// A free base (`pelvis`) carrying a 12-link spatial chain, with `outputs`.
+    fn free_chain(outputs: TokenStream) -> TokenStream {
         let bodies = (0..12).map(|i| {
             let name = format_ident!("link{i}");
             quote! { body #name { mass: 1.5, com: [0.01, 0.02, -0.1], inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0005], [0.0, 0.0005, 0.008]] } }
@@ -1651,14 +1647,26 @@ pub(crate) mod tests {
             let axis = [quote!(x), quote!(y), quote!(z)][i % 3].clone();
             quote! { joint #name: revolute(#parent -> #child) { axis: #axis, at: [0.02, 0.0, -0.2] } }
         });
-        let functions = compile(quote! {
+        quote! {
             struct FreeChain;
-            outputs: [forward_dynamics, forward_dynamics_derivatives];
+            outputs: #outputs;
             body pelvis { mass: 5.0, inertia: diag([0.05, 0.04, 0.03]) }
             joint base: free(ground -> pelvis);
             #(#bodies)*
             #(#joints)*
-        });
+        }
+    }
+
+    /// A free base carrying a 12-link spatial chain: forward dynamics by the
+    /// articulated-body algorithm, but its derivatives' chain rule takes q̈ from the LDLᵀ
+    /// factorization the solves need (fewer operations than with the articulated-body
+    /// algorithm beside it); the values are checked in tests/generated_derivatives.rs.
+    #[test]
+    fn forward_dynamics_derivatives_take_the_cheaper_chain() {
+        let functions = compile(free_chain(quote!([
+            forward_dynamics,
+            forward_dynamics_derivatives
+        ])));
         let doc = |name: &str| {
             functions
                 .iter()
@@ -1680,28 +1688,7 @@ pub(crate) mod tests {
     /// the quadruped.
     #[test]
     fn forward_dynamics_derivatives_solve_by_a_loop_where_cheaper() {
-        let bodies = (0..12).map(|i| {
-            let name = format_ident!("link{i}");
-            quote! { body #name { mass: 1.5, com: [0.01, 0.02, -0.1], inertia: [[0.01, 0.001, 0.0], [0.001, 0.012, 0.0005], [0.0, 0.0005, 0.008]] } }
-        });
-        let joints = (0..12).map(|i| {
-            let (name, child) = (format_ident!("joint{i}"), format_ident!("link{i}"));
-            let parent = if i == 0 {
-                format_ident!("pelvis")
-            } else {
-                format_ident!("link{}", i - 1)
-            };
-            let axis = [quote!(x), quote!(y), quote!(z)][i % 3].clone();
-            quote! { joint #name: revolute(#parent -> #child) { axis: #axis, at: [0.02, 0.0, -0.2] } }
-        });
-        let tokens = quote! {
-            struct FreeChain;
-            outputs: [forward_dynamics_derivatives];
-            body pelvis { mass: 5.0, inertia: diag([0.05, 0.04, 0.03]) }
-            joint base: free(ground -> pelvis);
-            #(#bodies)*
-            #(#joints)*
-        };
+        let tokens = free_chain(quote!([forward_dynamics_derivatives]));
         let solved_by_loop = |functions: &[Function]| {
             functions
                 .iter()

@@ -28,9 +28,9 @@ use crate::Scalar;
 /// constant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct CoordinateTree<const N: usize, const P: usize> {
-    /// Row k of L, `ancestors[row_end[k − 1]..row_end[k]]`: k's ancestors from its parent
-    /// towards the root; L_ki is `factor[p]` at the same position p.
-    ancestors: [usize; P],
+    /// Row k of L, `ancestors[row_end[k − 1]..row_end[k]]`: k's ancestors i from its parent
+    /// towards the root, each with the position of L_ki in the factor (its own position).
+    ancestors: [(usize, usize); P],
     row_end: [usize; N],
     /// For j = N − 1 down to 0 in turn, its descendants k, deepest number first, each with
     /// the position of L_kj in the factor; j's end at `descendants_end[j]`.
@@ -50,7 +50,7 @@ impl<const N: usize, const P: usize> CoordinateTree<N, P> {
     #[must_use]
     pub const fn new(parent: [Option<usize>; N]) -> Self {
         let mut depth = [0; N];
-        let mut ancestors = [0; P];
+        let mut ancestors = [(0, 0); P];
         let mut row_end = [0; N];
         let mut p = 0;
         let mut k = 0;
@@ -62,7 +62,7 @@ impl<const N: usize, const P: usize> CoordinateTree<N, P> {
             let mut ancestor = parent[k];
             while let Some(i) = ancestor {
                 assert!(p < P, "P must count the (coordinate, ancestor) pairs");
-                ancestors[p] = i;
+                ancestors[p] = (i, p);
                 p += 1;
                 ancestor = parent[i];
             }
@@ -88,7 +88,7 @@ impl<const N: usize, const P: usize> CoordinateTree<N, P> {
                 k -= 1;
                 let at = row_end[k] - depth[k] + (depth[k] - depth[j] - 1);
                 assert!(
-                    ancestors[at] == j,
+                    ancestors[at].0 == j,
                     "the coordinates must be numbered depth first"
                 );
                 descendants[d] = (k, at);
@@ -127,28 +127,12 @@ pub fn solve_columns<
     inverse_pivot: &[T; N],
     mut columns: [[[T; C]; N]; K],
 ) -> [[[T; C]; N]; K] {
-    // Plain indexed loops only: everything here must inline into the generated kernel, so
-    // that the wide copy's multiply-adds compile to FMA instructions.
     // Lᵀ Z = B, from the leaves: row j gathers its descendants' final rows.
     let mut start = 0;
     for j in (0..N).rev() {
         let end = tree.descendants_end[j];
-        let mut row = [[T::from_f64(0.0); C]; K];
-        for m in 0..K {
-            row[m] = columns[m][j];
-        }
-        for &(k, at) in tree.descendants.get(start..end).unwrap_or(&[]) {
-            if let (Some(&l), true) = (factor.get(at), k < N) {
-                for m in 0..K {
-                    for c in 0..C {
-                        row[m][c] = (-l).mul_add_for::<WIDE>(columns[m][k][c], row[m][c]);
-                    }
-                }
-            }
-        }
-        for m in 0..K {
-            columns[m][j] = row[m];
-        }
+        let below = tree.descendants.get(start..end).unwrap_or(&[]);
+        gather_row::<T, WIDE, N, P, C, K>(&mut columns, j, below, factor);
         start = end;
     }
     for k in 0..N {
@@ -162,27 +146,50 @@ pub fn solve_columns<
     let mut start = 0;
     for k in 0..N {
         let end = tree.row_end[k];
-        let mut row = [[T::from_f64(0.0); C]; K];
-        for m in 0..K {
-            row[m] = columns[m][k];
-        }
-        for at in start..end {
-            if let (Some(&i), Some(&l)) = (tree.ancestors.get(at), factor.get(at)) {
-                if i < N {
-                    for m in 0..K {
-                        for c in 0..C {
-                            row[m][c] = (-l).mul_add_for::<WIDE>(columns[m][i][c], row[m][c]);
-                        }
-                    }
-                }
-            }
-        }
-        for m in 0..K {
-            columns[m][k] = row[m];
-        }
+        let above = tree.ancestors.get(start..end).unwrap_or(&[]);
+        gather_row::<T, WIDE, N, P, C, K>(&mut columns, k, above, factor);
         start = end;
     }
     columns
+}
+
+/// Row `r` of every matrix minus L · row `other` for each (other, position of L in
+/// `factor`) of `terms`, in order, accumulated in a local row (registers) and stored once.
+/// Plain indexed loops, inlined into the generated kernel, so that the wide copy's
+/// multiply-adds compile to FMA instructions.
+#[inline(always)]
+fn gather_row<
+    T: Scalar,
+    const WIDE: bool,
+    const N: usize,
+    const P: usize,
+    const C: usize,
+    const K: usize,
+>(
+    columns: &mut [[[T; C]; N]; K],
+    r: usize,
+    terms: &[(usize, usize)],
+    factor: &[T; P],
+) {
+    if r >= N {
+        return;
+    }
+    let mut row = [[T::from_f64(0.0); C]; K];
+    for m in 0..K {
+        row[m] = columns[m][r];
+    }
+    for &(other, at) in terms {
+        if let (Some(&l), true) = (factor.get(at), other < N) {
+            for m in 0..K {
+                for c in 0..C {
+                    row[m][c] = (-l).mul_add_for::<WIDE>(columns[m][other][c], row[m][c]);
+                }
+            }
+        }
+    }
+    for m in 0..K {
+        columns[m][r] = row[m];
+    }
 }
 
 #[cfg(test)]
