@@ -504,7 +504,15 @@ impl Plan {
             .output_leaves
             .iter()
             .map(|&n| let_node(n, ops[n.index()]));
-        let output = spec.output.expr();
+        // Built outside the kernels: a solve loop runs in the copy `T::run_kernel` chooses,
+        // or in the baseline copy when the function has only that one.
+        let output = match &spec.output {
+            Output::Solved(_) if !spec.dispatch => {
+                let solved = spec.output.expr_in_kernel();
+                quote!({ const WIDE: bool = false; #solved })
+            }
+            _ => spec.output.expr(),
+        };
         quote!(#(#fns)* #(#calls)* #(#leaves)* #output)
     }
 }
@@ -677,7 +685,7 @@ pub(crate) fn nalgebra_wrapper(spec: &FunctionSpec, nalgebra: &TokenStream) -> T
 #[cfg(test)]
 mod tests {
     use super::f64_literal;
-    use crate::ir::{Arg, FunctionSpec, Output};
+    use crate::ir::{Arg, FunctionSpec, Output, TreeSolve};
     use crate::passes::{fusion, signs};
     use crate::schedule::Plan;
     use crate::sym::{Array, Graph, InputRef, Node};
@@ -1130,6 +1138,42 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
             one.contains(&format!("let (carry_1, [{early}]) = part_1(q, v);")),
             "{one}"
         );
+    }
+
+    /// A solve loop (`Output::Solved`) runs in the kernel's own copy when a kernel builds
+    /// the output, through `T::run_kernel` when a split function builds it outside its
+    /// pieces, and in the baseline copy only when the function has no other.
+    #[test]
+    fn a_solve_loop_runs_in_the_copy_of_its_caller() {
+        let g = Graph::new();
+        let xs = long_chain(&g, 200);
+        let solved = Output::Solved(TreeSolve {
+            parents: vec![None, Some(0)],
+            factor: vec![xs[1]],
+            inverse_pivot: vec![xs[2], xs[4]],
+            rhs: vec![vec![vec![xs[0]], vec![xs[3]]]],
+        });
+        let mut s = spec("solved", &[(Array::Q, 8), (Array::V, 3)], solved);
+        // The text without white space, where the pretty printer may break lines.
+        let text = |s: &FunctionSpec| {
+            let text = pretty(emit_function(&g, s));
+            syn::parse_str::<syn::File>(&text).expect("pretty text parses again");
+            text.split_whitespace().collect::<String>()
+        };
+        let solve_in = |copy: &str| format!("solve_columns::<T,{copy},2,1,1,1");
+        s.split_threshold = usize::MAX;
+        let whole = text(&s);
+        assert!(whole.contains(&solve_in("WIDE")), "{whole}");
+        assert_eq!(whole.matches("run_kernel(").count(), 1, "{whole}");
+        s.split_threshold = 100;
+        let split = text(&s);
+        assert!(split.contains(&solve_in("true")), "{split}");
+        assert!(split.contains(&solve_in("false")), "{split}");
+        s.dispatch = false;
+        let one_copy = text(&s);
+        assert!(!one_copy.contains("run_kernel("), "{one_copy}");
+        assert!(one_copy.contains("constWIDE:bool=false;"), "{one_copy}");
+        assert!(one_copy.contains(&solve_in("WIDE")), "{one_copy}");
     }
 
     /// `Scalar` as the runtime defines it, reduced to what generated code uses.
