@@ -1,6 +1,6 @@
 //! Straight-line Rust from the expression DAG.
 //!
-//! [`emit_function`] writes one function, generic over `T: Scalar` (the trait's path is
+//! [`function`] writes one function, generic over `T: Scalar` (the trait's path is
 //! given by the caller), taking fixed-size array references in a caller-given order and
 //! returning a fixed-size array, a matrix `[[T; C]; R]`, a scalar or a tuple of those
 //! ([`Output`]). Its body is one `let vN = …;` per live node of the graph: the inputs and
@@ -517,7 +517,7 @@ impl Plan {
     }
 }
 
-/// The live non-leaf nodes as statements, in [`depth_first`] order: the sines and cosines
+/// The live non-leaf nodes as statements, in [`crate::schedule`]'s depth-first order: the sines and cosines
 /// of two or more inputs merged into one [`Step::Batch`] at the first of them, other
 /// `let vN = …;` for a single node.
 fn let_node(node: Node, op: Op) -> TokenStream {

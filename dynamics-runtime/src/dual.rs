@@ -1,40 +1,40 @@
 //! Dual numbers: forward-mode differentiation through any function generic over [`Scalar`].
-//!
-//! A dual number x + ε ẋ, with ε² = 0, carries a value and its derivative along one
-//! direction. Every operation applies the chain rule to the derivative part:
-//!
-//! ```text
-//! (a + ε ȧ) ± (b + ε ḃ) = a ± b + ε (ȧ ± ḃ)
-//! (a + ε ȧ) · (b + ε ḃ) = a b + ε (ȧ b + a ḃ)
-//! (a + ε ȧ) / (b + ε ḃ) = a / b + ε (ȧ b − a ḃ) / b²
-//! sin(a + ε ȧ) = sin a + ε ȧ cos a,   cos(a + ε ȧ) = cos a − ε ȧ sin a
-//! √(a + ε ȧ) = √a + ε ȧ / (2 √a)
-//! ```
-//!
-//! so f(x + ε ẋ) = f(x) + ε f′(x) ẋ exactly (no step size, no truncation error), for every
-//! function built from these operations: every generated function and the runtime
-//! [`Reference`](crate::Reference). One call gives one column of a Jacobian: seed the
-//! inputs with the direction ẋ (e.g. `Dual::variable(q[j])` for column j of ∂/∂q, the other
-//! inputs `Dual::constant`) and read [`Dual::derivative`] of the outputs.
-//!
-//! ```
-//! use dynamics_runtime::{Dual, Scalar};
-//! // d/dx (x sin x) at x = 2: sin 2 + 2 cos 2.
-//! let x = Dual::variable(2.0_f64);
-//! let y = x * x.sin();
-//! assert!((y.derivative - (2.0_f64.sin() + 2.0 * 2.0_f64.cos())).abs() < 1e-15);
-//! ```
-//!
-//! For a free-floating base the derivative with respect to q in the tangent space (the one
-//! the generated `*_derivatives` take) seeds the configuration through
-//! [`integrate_configuration`](crate::integrate_configuration): q(t) = q ⊕ t e_j at
-//! t = `Dual::variable(0.0)`.
 
 use crate::scalar::Scalar;
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 use num_traits::{One, Zero};
 
-/// A value and its derivative along one direction (see the [module documentation](self)).
+/// A value and its derivative along one direction.
+///
+/// A dual number x + ε ẋ, with ε² = 0, carries a value and its derivative along one
+/// direction. Every operation applies the chain rule to the derivative part:
+///
+/// ```text
+/// (a + ε ȧ) ± (b + ε ḃ) = a ± b + ε (ȧ ± ḃ)
+/// (a + ε ȧ) · (b + ε ḃ) = a b + ε (ȧ b + a ḃ)
+/// (a + ε ȧ) / (b + ε ḃ) = a / b + ε (ȧ b − a ḃ) / b²
+/// sin(a + ε ȧ) = sin a + ε ȧ cos a,   cos(a + ε ȧ) = cos a − ε ȧ sin a
+/// √(a + ε ȧ) = √a + ε ȧ / (2 √a)
+/// ```
+///
+/// so f(x + ε ẋ) = f(x) + ε f′(x) ẋ exactly (no step size, no truncation error), for every
+/// function built from these operations: every generated function and the runtime
+/// [`Reference`](crate::Reference). One call gives one column of a Jacobian: seed the
+/// inputs with the direction ẋ (e.g. `Dual::variable(q[j])` for column j of ∂/∂q, the other
+/// inputs `Dual::constant`) and read [`Dual::derivative`] of the outputs.
+///
+/// ```
+/// use dynamics_runtime::{Dual, Scalar};
+/// // d/dx (x sin x) at x = 2: sin 2 + 2 cos 2.
+/// let x = Dual::variable(2.0_f64);
+/// let y = x * x.sin();
+/// assert!((y.derivative - (2.0_f64.sin() + 2.0 * 2.0_f64.cos())).abs() < 1e-15);
+/// ```
+///
+/// For a free-floating base the derivative with respect to q in the tangent space (the one
+/// the generated `*_derivatives` take) seeds the configuration through
+/// [`integrate_configuration`](crate::integrate_configuration): q(t) = q ⊕ t e_j at
+/// t = `Dual::variable(0.0)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dual<T> {
     /// The value, a.

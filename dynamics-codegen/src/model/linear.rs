@@ -160,7 +160,7 @@ pub(crate) fn rotation_from_rpy(roll: f64, pitch: f64, yaw: f64) -> Matrix3 {
 }
 
 /// The rotation by `angle` about the unit vector `u` (Rodrigues):
-/// R = cos θ · 1 + sin θ · [u]× + (1 − cos θ) u uᵀ. A zero angle gives exactly the identity.
+/// R = cos θ · 1 + sin θ · \[u\]× + (1 − cos θ) u uᵀ. A zero angle gives exactly the identity.
 pub(crate) fn rotation_from_axis_angle(u: &Vector3, angle: f64) -> Matrix3 {
     if angle == 0.0 {
         return IDENTITY;

@@ -1196,7 +1196,7 @@ pub(crate) struct CoordinateInertia {
 /// of inertia about the joint axis, a prismatic joint's subtree has mass, a free joint's
 /// subtree has mass and a nonsingular rotational inertia, in at least one of the
 /// configurations sampled, or the joint has armature (which adds to the coordinate's own
-/// entries of M, so M = [armature] for a massless slider is not singular). Otherwise M(q) is
+/// entries of M, so M = \[armature\] for a massless slider is not singular). Otherwise M(q) is
 /// singular for every q. "Nonzero" is relative to `scale`, the size of the mechanism's
 /// inertia as a whole (when that is finite; else only 0 is). A mass or moment that is not
 /// finite (the numbers overflow `f64`) is an error of its own, whatever the armature: M(q)

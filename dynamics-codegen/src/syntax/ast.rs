@@ -150,7 +150,7 @@ pub struct Mechanism {
     /// The generated type's name.
     pub name: syn::Ident,
     /// Gravity in the world frame, as declared; `None` when absent, which means the
-    /// default (0, 0, −9.81) ([`DEFAULT_GRAVITY`]).
+    /// default (0, 0, −9.81) (`DEFAULT_GRAVITY`).
     pub gravity: Option<Gravity>,
     /// Requested outputs (all when absent).
     pub outputs: Option<Vec<Name>>,
