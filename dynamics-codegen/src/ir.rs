@@ -103,9 +103,24 @@ impl TreeSolve {
         (sweeps + columns * self.inverse_pivot.len(), sweeps)
     }
 
+    /// The right-hand sides grouped as the loop takes them, those of one width together:
+    /// (C, the indices of the K matrices of C columns), in increasing C.
+    #[must_use]
+    pub fn width_groups(&self) -> Vec<(usize, Vec<usize>)> {
+        let width = |b: &Vec<Vec<Node>>| b.first().map_or(0, Vec::len);
+        let widths: std::collections::BTreeSet<usize> = self.rhs.iter().map(width).collect();
+        widths
+            .into_iter()
+            .map(|w| {
+                let members = (0..self.rhs.len()).filter(|&k| width(&self.rhs[k]) == w);
+                (w, members.collect())
+            })
+            .collect()
+    }
+
     /// What the loop costs, in straight-line operations of about the same time: the
-    /// right-hand sides of one width go through the loop together, K matrices of C
-    /// columns, so each row update is ⌈C K / 4⌉ AVX2 multiply-adds and about two more
+    /// right-hand sides of one width go through the loop together ([`Self::width_groups`]),
+    /// K matrices of C columns, so each row update is ⌈C K / 4⌉ AVX2 multiply-adds and about two more
     /// instructions; the 2 P row updates of the sweeps (P the factor's length) and the N
     /// rows scaled by 1 / D_k cost 1.5 operations per such step, plus 480 for the call
     /// (fitted to the UR5's, the Panda's and the quadruped's forward-dynamics derivatives
@@ -113,17 +128,12 @@ impl TreeSolve {
     /// 7 straight-line operations a nanosecond).
     #[must_use]
     pub fn loop_cost(&self) -> usize {
-        let mut widths: Vec<usize> = self
-            .rhs
-            .iter()
-            .map(|b| b.first().map_or(0, Vec::len))
-            .collect();
-        widths.sort_unstable();
         let (pairs, n) = (self.factor.len(), self.inverse_pivot.len());
-        let steps: usize = widths
-            .chunk_by(|a, b| a == b)
-            .map(|group| {
-                let vectors = (group[0] * group.len()).div_ceil(4);
+        let steps: usize = self
+            .width_groups()
+            .iter()
+            .map(|(width, members)| {
+                let vectors = (width * members.len()).div_ceil(4);
                 2 * pairs * (vectors + 2) + n * vectors
             })
             .sum();

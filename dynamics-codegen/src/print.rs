@@ -176,25 +176,22 @@ fn tree_solve_expr(s: &TreeSolve, in_kernel: bool) -> TokenStream {
     });
     let factor = s.factor.iter().map(|&x| var(x));
     let pivots = s.inverse_pivot.iter().map(|&x| var(x));
-    let width = |b: &Vec<Vec<Node>>| b.first().map_or(0, Vec::len);
-    let mut widths: Vec<usize> = s.rhs.iter().map(width).collect();
-    widths.dedup();
-    let widths: BTreeSet<usize> = widths.into_iter().collect();
+    let groups = s.width_groups();
     let solved: Vec<Ident> = (0..s.rhs.len()).map(|k| format_ident!("x_{}", k)).collect();
     let solves =
         |wide: TokenStream| {
-            let groups = widths.iter().map(|&w| {
-            let members: Vec<usize> = (0..s.rhs.len()).filter(|&k| width(&s.rhs[k]) == w).collect();
+            let calls = groups.iter().map(|(width, members)| {
             let rhs = members.iter().map(|&k| Output::Matrix(s.rhs[k].clone()).expr());
             let names = members.iter().map(|&k| &solved[k]);
-            let (c, k) = (Literal::usize_unsuffixed(w), Literal::usize_unsuffixed(members.len()));
+            let c = Literal::usize_unsuffixed(*width);
+            let k = Literal::usize_unsuffixed(members.len());
             quote! {
                 let [#(#names),*] = #runtime::tree_ldlt::solve_columns::<T, #wide, #n, #p, #c, #k>(
                     &TREE, &factor, &inverse_pivot, [#(#rhs),*],
                 );
             }
         });
-            quote!(#(#groups)* (#(#solved,)*))
+            quote!(#(#calls)* (#(#solved,)*))
         };
     let run = if in_kernel {
         solves(quote!(WIDE))
@@ -517,9 +514,9 @@ impl Plan {
     }
 }
 
-/// The live non-leaf nodes as statements, in [`crate::schedule`]'s depth-first order: the sines and cosines
-/// of two or more inputs merged into one [`Step::Batch`] at the first of them, other
-/// `let vN = …;` for a single node.
+/// The live non-leaf nodes as statements, in [`crate::schedule`]'s depth-first order: the
+/// sines and cosines of two or more inputs merged into one [`Step::Batch`] at the first of
+/// them, other `let vN = …;` for a single node.
 fn let_node(node: Node, op: Op) -> TokenStream {
     let v = var(node);
     let expr = match op {
