@@ -561,8 +561,7 @@ fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
         );
         (g, output, velocity)
     };
-    let cost =
-        |(g, output, _): &(Graph, Output, VelocityColumns)| weighted_cost(g, &output.nodes());
+    let cost = |(g, output, _): &(Graph, Output, VelocityColumns)| output_cost(g, output);
     let mut candidates: Vec<_> = velocity_columns(model).into_iter().map(expand).collect();
     let best = cheapest(&candidates, cost);
     let (graph, output, velocity) = candidates.swap_remove(best);
@@ -609,18 +608,11 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
             "forward-mode differentiation of the forward-dynamics expansion".to_owned(),
         )
     };
-    let cost = |g: &Graph, output: &Output| {
-        let loop_cost = match output {
-            Output::Solved(s) => s.loop_cost(),
-            _ => 0,
-        };
-        weighted_cost(g, &output.nodes()).saturating_add(loop_cost)
-    };
     let chain = |method: ForwardMethod, velocity: VelocityColumns| {
         let (g, t, i) = fresh_graph(model);
         let mut outputs =
             forward_dynamics_derivatives_by_chain_rule(&g, &t, &i, model, method, velocity);
-        let best = cheapest(&outputs, |(output, _)| cost(&g, output));
+        let best = cheapest(&outputs, |(output, _)| output_cost(&g, output));
         let (output, solves) = outputs.swap_remove(best);
         let tau_by = match velocity {
             VelocityColumns::ForwardMode => "forward-mode derivatives of Newton–Euler",
@@ -657,7 +649,7 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
             candidates.push(chain(method, velocity));
         }
     }
-    let best = cheapest(&candidates, |(g, output, _)| cost(g, output));
+    let best = cheapest(&candidates, |(g, output, _)| output_cost(g, output));
     let (graph, output, how) = candidates.swap_remove(best);
     Expanded {
         graph,
@@ -892,8 +884,6 @@ fn forward_dynamics_on(
     }
 }
 
-/// Forward dynamics by whichever method costs fewer operations for this model (a division
-/// weighted as ten operations), with the method named in the docs.
 /// The weight of a function's operations when two expansions are compared: a division or a
 /// square root counts as ten products or sums; an expansion that ran out of room
 /// ([`crate::sym::NODE_BUDGET`]) costs the most.
@@ -903,6 +893,16 @@ fn weighted_cost(g: &Graph, outputs: &[Node]) -> usize {
     }
     let c = g.op_count(outputs);
     c.mul + c.add + 10 * c.div + 10 * c.sqrt
+}
+
+/// [`weighted_cost`] of what a function returns, with the solve loop of an
+/// [`Output::Solved`] at [`TreeSolve::loop_cost`].
+fn output_cost(g: &Graph, output: &Output) -> usize {
+    let loop_cost = match output {
+        Output::Solved(s) => s.loop_cost(),
+        _ => 0,
+    };
+    weighted_cost(g, &output.nodes()).saturating_add(loop_cost)
 }
 
 /// Both forward-dynamics expansions, the one of lower [`weighted_cost`] kept (the
@@ -917,6 +917,8 @@ fn cheapest_forward_dynamics(model: &Model) -> (Graph, Vec<Node>, ForwardMethod)
     }
 }
 
+/// Forward dynamics by whichever method costs fewer operations for this model (a division
+/// weighted as ten operations), with the method named in the docs.
 fn forward_dynamics(model: &Model) -> Expanded {
     let (graph, qdd, method) = cheapest_forward_dynamics(model);
     let method = match method {
