@@ -32,6 +32,7 @@ mechanism! {
 RUST
 "$target/release/dynamics-codegen" "$work/panda.rs" > "$work/crate/src/generated.rs"
 cp "$root/models/tools/call_context/main.rs" "$work/crate/src/main.rs"
+cp "$root/models/examples/support/paired.rs" "$work/crate/src/paired.rs"
 cat > "$work/crate/Cargo.toml" <<TOML
 [package]
 name = "call-context"

@@ -1,8 +1,11 @@
 //! The Panda's generated functions timed called back to back, and each call preceded by a
 //! `rep stosb` of 256 or 3000 bytes to a scratch buffer (see `../call_context.sh`). Each
-//! figure is the median of 15 rounds of 10 000 calls over 20 states.
+//! figure is the median of 15 rounds of 10 000 calls over the 20 states of
+//! `models/examples/support/paired.rs`.
 
 #![allow(dead_code)] // the generated file holds more than the harness times
+
+mod paired;
 
 mod generated {
     include!("generated.rs");
@@ -56,20 +59,6 @@ fn median_ns(mut call: impl FnMut(usize)) -> f64 {
     rounds[7]
 }
 
-/// 20 states of numbers in [−2, 2) from a fixed xorshift stream.
-fn states() -> Vec<[[f64; 7]; 3]> {
-    let mut s = 0x9e37_79b9_7f4a_7c15_u64;
-    let mut next = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
-    };
-    (0..20)
-        .map(|_| std::array::from_fn(|_| std::array::from_fn(|_| next())))
-        .collect()
-}
-
 macro_rules! row {
     ($states:expr, $name:ident, |$s:ident| $call:expr) => {{
         let states = $states;
@@ -100,7 +89,7 @@ macro_rules! row {
 
 fn main() {
     let _ = dynamics_runtime::isa::wide();
-    let states = &states();
+    let states = &paired::states::<7, 7>(None);
     println!(
         "rep stosb alone: 256 bytes {:.1} ns, 3000 bytes {:.1} ns; 3000 bytes by 8-byte stores {:.1} ns",
         median_ns(|_| string_store(256)),
@@ -112,22 +101,22 @@ fn main() {
     );
     println!("| --- | ---: | ---: | ---: | ---: | ---: |");
     row!(states, inverse_dynamics, |s| Panda::inverse_dynamics(
-        &s[0], &s[1], &s[2]
+        &s.0, &s.1, &s.2
     ));
-    row!(states, mass_matrix, |s| Panda::mass_matrix(&s[0]));
+    row!(states, mass_matrix, |s| Panda::mass_matrix(&s.0));
     row!(states, coriolis_matrix, |s| Panda::coriolis_matrix(
-        &s[0], &s[1]
+        &s.0, &s.1
     ));
     row!(states, forward_dynamics, |s| Panda::forward_dynamics(
-        &s[0], &s[1], &s[2]
+        &s.0, &s.1, &s.2
     ));
     row!(states, mass_matrix_inverse, |s| Panda::mass_matrix_inverse(
-        &s[0]
+        &s.0
     ));
     row!(states, inverse_dynamics_derivatives, |s| {
-        Panda::inverse_dynamics_derivatives(&s[0], &s[1], &s[2])
+        Panda::inverse_dynamics_derivatives(&s.0, &s.1, &s.2)
     });
     row!(states, forward_dynamics_derivatives, |s| {
-        Panda::forward_dynamics_derivatives(&s[0], &s[1], &s[2])
+        Panda::forward_dynamics_derivatives(&s.0, &s.1, &s.2)
     });
 }
