@@ -4,9 +4,10 @@
 //! - `F64x4`, four different states per call: every lane bit for bit the `f64` call on its
 //!   state, with `f64` pinned to its baseline copy (`isa::choose(false)`), for every output
 //!   of both robots.
-//! - The same lanes against `f64`'s AVX2 + FMA copy (where the CPU has it): that copy fuses
-//!   products into sums, so it differs in the last bits: within 1e-14 · (1 + max |output|)
-//!   (measured worst 2.1e-15, UR5 potential energy).
+//! - The same lanes against `f64`'s AVX2 + FMA copy (where the CPU has it): built without
+//!   AVX, `F64x4` runs the copy `f64` runs, so again bit for bit; built with AVX (`wide`
+//!   backing, baseline arithmetic) within 1e-14 · (1 + max |output|) (measured worst
+//!   2.1e-15, UR5 potential energy).
 //! - `F32x8`, eight states per call, against `f32`: the arithmetic is the same, the sines
 //!   and cosines differ by up to 1 ulp (`lanes` module): within 2e-6 · (1 + max |output|)
 //!   (measured worst 2.1e-7, under two ulps of f32, UR5 forward dynamics; 78 to 100 % of
@@ -358,18 +359,27 @@ fn f64x4_lanes_are_the_f64_baseline_calls_bit_for_bit() {
     quadruped_outputs!(F64x4, &states::<QUAD_NQ, QUAD_NV, QUAD_NL>(2, 64), EXACT);
 }
 
-/// The AVX2 + FMA copy of f64 fuses products into sums (and its sines and cosines): the
-/// lanes, which run the baseline arithmetic, agree with it to 1e-14 relative (measured
-/// worst 2.1e-15).
+/// With f64 on its AVX2 + FMA copy, which fuses products into sums (and takes its sines
+/// and cosines four at a time): built without AVX, `F64x4` runs the same copy, each lane bit
+/// for bit the f64 call; built with AVX (`wide`'s backing), it runs the baseline
+/// arithmetic and agrees with the FMA copy to 1e-14 relative (measured worst 2.1e-15).
 #[test]
 fn f64x4_lanes_against_the_fma_copy_of_f64() {
     let Some(_pinned) = pin(true) else {
         println!("no AVX2 + FMA on this CPU: nothing to compare");
         return;
     };
-    let rel = [Agreement::Relative(1e-14); 9];
-    ur5_outputs!(F64x4, &states::<UR5_NQ, UR5_NQ, 0>(3, 64), rel);
-    quadruped_outputs!(F64x4, &states::<QUAD_NQ, QUAD_NV, QUAD_NL>(4, 64), rel);
+    let agreement = if cfg!(target_feature = "avx") {
+        [Agreement::Relative(1e-14); 9]
+    } else {
+        EXACT
+    };
+    ur5_outputs!(F64x4, &states::<UR5_NQ, UR5_NQ, 0>(3, 64), agreement);
+    quadruped_outputs!(
+        F64x4,
+        &states::<QUAD_NQ, QUAD_NV, QUAD_NL>(4, 64),
+        agreement
+    );
     isa::choose(false);
 }
 

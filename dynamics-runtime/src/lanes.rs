@@ -9,45 +9,49 @@
 //!   IEEE-754 with rounding to nearest (NaN payloads aside).
 //! - [`Scalar::mul_add`]: as the scalar type's, two roundings, fused (one rounding) only
 //!   when the crate is built for FMA (`-C target-cpu=native`, `-C target-feature=+fma`).
-//! - `sin`, `cos`, `sin_cos`, `sin_cos_array` of [`F64x4`]: bit for bit the runtime's own
-//!   `fast_trig::sin_cos` (the same kernel, one instruction for all lanes), which is what
-//!   `<f64 as Scalar>::sin_cos_array`, the generated code's batched sines and cosines, computes
-//!   in the baseline copy; within 1 ulp of std's `f64::sin_cos` for |x| ≤ 1.6·10⁶ (tested
-//!   in `fast_trig`, and here on 1.5 million points). [`F32x8`]: the same kernel on the
-//!   lanes widened to `f64`, rounded to `f32`: within 1 ulp of std's `f32::sin_cos` (tested
-//!   here on 4 million points: 2.6 to 4.2 % of them differ, and at every point tested the
-//!   lanes' value is std's `f64` one rounded to `f32`, std's `f32` one in 96 to 97 %). Both: NaN for |x| ≥ 2⁵⁰,
-//!   ±∞ and NaN, and `sin(−0) = +0`.
-//! - The generated code runs its baseline copy on lanes ([`Scalar::run_kernel`]'s default):
-//!   so with `f64` pinned to its baseline copy ([`crate::isa::choose`]`(false)` or
-//!   `DYNAMICS_ISA=baseline`), each lane of a generated function on [`F64x4`] is bit for bit
-//!   the `f64` call on that lane's state (`tests/lanes.rs`). The AVX2 + FMA copy of `f64`
-//!   fuses products and so differs in the last bits (that test states by how much).
+//! - `sin`, `cos` and `sin_cos` of [`F64x4`]: bit for bit the runtime's own
+//!   `fast_trig::sin_cos` on each lane; within 1 ulp of std's `f64::sin_cos` for
+//!   |x| ≤ 1.6·10⁶ (tested in `fast_trig`, and here on 1.5 million points). [`F32x8`]: the
+//!   same kernel on the lanes widened to `f64`, rounded to `f32`: within 1 ulp of std's
+//!   `f32::sin_cos` (tested here on 4 million points: 2.6 to 4.2 % of them differ, and at
+//!   every point tested the lanes' value is std's `f64` one rounded to `f32`, std's `f32` one
+//!   in 96 to 97 %). Both: NaN for |x| ≥ 2⁵⁰, ±∞ and NaN, and `sin(−0) = +0`.
+//! - Generated code on [`F64x4`], in a build without AVX (the default x86-64 target): each
+//!   lane is the `f64` call on that lane's state, bit for bit, in whichever copy of the
+//!   kernel ([`crate::isa`]) `f64` runs: the lanes take `f64`'s choice of copy, its fused
+//!   multiply-adds in the AVX2 + FMA copy and its batched sines and cosines
+//!   (`tests/lanes.rs`, both copies). Built with AVX, and for [`F32x8`], the generated code
+//!   runs its baseline copy on lanes ([`Scalar::run_kernel`]'s default): each lane is then
+//!   bit for bit the scalar call with the scalar pinned to its baseline copy
+//!   ([`crate::isa::choose`]`(false)` or `DYNAMICS_ISA=baseline`).
 //! - Equality (`==`, required of a [`Scalar`]) holds when every lane is equal; nothing else
 //!   compares or branches on data.
 //!
-//! # Backing: the `wide` crate
+//! # Backing
 //!
-//! The lanes are `wide::f64x4` and `wide::f32x8` in a newtype. `wide` was already in the
-//! dependency graph (nalgebra → simba → wide 1.7, the version locked), is maintained, and
-//! gives safe, lane-wise IEEE operations on SSE2, AVX, NEON and WebAssembly SIMD with a
-//! portable fallback, chosen at compile time: this module has no `unsafe`. Hand-written
-//! `core::arch` would have needed `unsafe` transmutes and a copy per architecture for the
-//! same instructions. The cost of that choice: `wide` picks its instructions from the
-//! crate's compile-time target, so a baseline x86-64 build runs an [`F64x4`] as two SSE2
-//! registers; built with `-C target-cpu=native` on an AVX CPU it is one AVX register.
-//! (`std::simd` is not stable.)
+//! [`F64x4`], in a build without AVX, is four `f64` in an array, each operation written
+//! lane by lane, every generated kernel run in the copy `f64` runs (`lanes/dispatched.rs`):
+//! the compiler turns each operation's four lanes into one instruction, one AVX register
+//! in the AVX2 + FMA copy, two SSE2 registers in the baseline one. [`F32x8`], and [`F64x4`]
+//! in a build with AVX (`-C target-cpu=native` on an AVX CPU), are `wide::f64x4` and
+//! `wide::f32x8` in a newtype. `wide` was already in the dependency graph (nalgebra →
+//! simba → wide 1.7, the version locked), is maintained, and gives safe, lane-wise IEEE
+//! operations on SSE2, AVX, NEON and WebAssembly SIMD with a portable fallback, chosen at
+//! compile time: this module has no `unsafe`. Its cost: it picks its instructions from the
+//! crate's compile-time target, so in a baseline x86-64 build a `wide` vector is SSE2
+//! registers even inside the AVX2 copy of a kernel, which is why [`F64x4`] there is an
+//! array instead. (`std::simd` is not stable.)
 //!
 //! # Speed (BENCHMARKS.md, "Many states per call")
 //!
-//! Built for baseline x86-64, [`F64x4`] gains 1.1 to 1.25× per state over the `f64` call on
-//! the UR5 and nothing on the 18-dof quadruped, whose long straight-line functions spill
-//! two-register vectors as much as they gain. Built with `-C target-cpu=native` (AVX), it
-//! is 2.2 to 2.9× faster per state than the `f64` call on both for inverse and forward
-//! dynamics, 1.4× for the mass matrices. The generated `f64` code picks an AVX2 + FMA copy
-//! at run time; the lanes cannot (`wide` chooses at compile time), and running their
-//! kernels in that copy anyway was measured and not kept: 4 to 30 % faster for `F64x4`,
-//! up to 1.6× slower for `F32x8`.
+//! In the default build, on states already in lanes, [`F64x4`] evaluates the UR5's inverse
+//! dynamics 1.8× and the 18-dof quadruped's 2.1× faster per state than the `f64` call,
+//! their mass matrices 1.5× and 1.4×, their forward dynamics 1.7×; through the batch
+//! helpers, whose packing and unpacking take the rest, 1.2 to 1.45×. `wide`'s [`F64x4`] (the previous backing) gained 1.1 to 1.25× on
+//! the UR5 and nothing on the quadruped. Built with `-C target-cpu=native` (AVX), 2.2 to
+//! 2.9× for inverse and forward dynamics, 1.4× for the mass matrices. [`F32x8`] stays on
+//! `wide`: its sines and cosines come from the `f64` kernel on the widened lanes, which the
+//! dispatched `f32` copy (one `sin_cos` call per lane and angle) would not vectorize.
 
 use crate::fast_trig::{self, Lane, LaneBits};
 use crate::Scalar;
@@ -318,6 +322,12 @@ macro_rules! lanes_type {
     };
 }
 
+#[cfg(not(target_feature = "avx"))]
+mod dispatched;
+#[cfg(not(target_feature = "avx"))]
+pub use dispatched::F64x4;
+
+#[cfg(target_feature = "avx")]
 lanes_type!(
     /// Four `f64` lanes: a [`Scalar`] that runs a generated function on four states at once,
     /// each lane bit for bit the `f64` computation (see the [module documentation](self) for

@@ -14,8 +14,10 @@
 //!
 //! - `f64`: one call per state, on the AVX2 + FMA copy where the CPU has both
 //!   (`isa::choose(true)`; the default choice, `dynamics_runtime::isa`);
-//! - `f64_baseline`: the same, pinned to the baseline (SSE2) copy, the code the lanes run;
-//! - `F64x4`: `batch::mapN` over the 64 states, 16 calls on four lanes, packing included;
+//! - `f64_baseline`: the same, pinned to the baseline (SSE2) copy, the code `F32x8` runs
+//!   (and `F64x4` in a build with AVX);
+//! - `F64x4`: `batch::mapN` over the 64 states, 16 calls on four lanes, packing included,
+//!   in the copy `f64` runs by default (a build without AVX; `dynamics_runtime::lanes`);
 //! - `F64x4_prepacked`: the 16 calls alone, on states already in lanes;
 //! - `F32x8`: `batch::mapN` over the same states in `f32`, 8 calls on eight lanes.
 //!
@@ -109,6 +111,8 @@ macro_rules! model {
                 black_box(&mut out);
             });
         }
+        // The lanes run the copy f64 runs by default (the AVX2 one where the CPU has it).
+        isa::choose(true);
         bench($c, $name, "inverse_dynamics/F64x4", || {
             black_box(
                 batch::map4(&s.q, &s.v, &s.a, &s.loads, &mut out, |$q, $v, $a, $l| $id).is_ok(),
