@@ -389,6 +389,23 @@ fn f64x4_lanes_against_the_fma_copy_of_f64() {
 #[test]
 fn f32x8_lanes_against_f32() {
     let _pinned = pin(false).expect("the baseline copy is always available");
+    f32x8_against_f32();
+}
+
+/// The same with f32 on its AVX2 + FMA copy, which fuses products into sums while the
+/// lanes run the baseline arithmetic: still within 2e-6.
+#[test]
+fn f32x8_lanes_against_the_fma_copy_of_f32() {
+    let Some(_pinned) = pin(true) else {
+        println!("no AVX2 + FMA on this CPU: nothing to compare");
+        return;
+    };
+    f32x8_against_f32();
+    isa::choose(false);
+}
+
+/// Both robots' outputs on F32x8 against f32, 2e-6 relative.
+fn f32x8_against_f32() {
     use Agreement::Relative as R;
     let ur5: Vec<_> = states::<UR5_NQ, UR5_NQ, 0>(5, 128)
         .into_iter()

@@ -252,7 +252,8 @@ pub fn sin_cos_mul_add(x: f64) -> (f64, f64) {
 }
 
 /// [`sin_cos`] of each lane of `x`: bit for bit, lane by lane, what [`sin_cos`] gives for
-/// that lane's angle (the same operations in the same order). For `crate::lanes`.
+/// that lane's angle (the same operations in the same order). For the `wide` lanes
+/// (`lanes/wide_backed.rs`).
 #[inline(always)]
 pub(crate) fn sin_cos_lanes<V: Lane>(x: V) -> (V, V) {
     sin_cos_impl::<V, false>(x)

@@ -8,7 +8,12 @@
 //! SIMD instruction: one AVX register in the AVX2 + FMA copy, two SSE2 registers in the
 //! baseline one. A `wide::f64x4` (the backing of the AVX build, [`super`]) cannot take
 //! the AVX2 copy: `wide` picks SSE2 instructions when the crate is compiled, whatever
-//! function they are inlined into.
+//! function they are inlined into. (An eight-lane `f32` type built the same way was tried
+//! and not kept: [`super`], "Backing".)
+//!
+//! The lane-by-lane helpers are free functions on arrays: written as methods taking the
+//! lanes by value, a debug build's frames grew past the 2 MB of a test thread on the
+//! quadruped's functions (tests/lanes.rs), where these stay under it.
 
 use super::Lanes;
 use crate::fast_trig;
