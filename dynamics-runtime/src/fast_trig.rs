@@ -50,8 +50,9 @@
 //! The kernel is written once, generic over [`Lane`]: `f64` here, and the `wide` SIMD
 //! lanes of [`crate::lanes`] (`F32x8` widened to `f64`, and `F64x4` in a build with AVX),
 //! where every operation is the same `f64` operation on each lane, so each lane is bit for
-//! bit [`sin_cos`] of its angle (tested there). Making it generic left the `f64` machine code as it was (the
-//! assembly of `sin_cos`, `sin_cos_mul_add` and `sin_cos_array` compared before and after).
+//! bit [`sin_cos`] of its angle (tested there). Making it generic left the `f64` machine
+//! code as it was (the assembly of `sin_cos`, `sin_cos_mul_add` and `sin_cos_array`
+//! compared before and after).
 //!
 //! # Accuracy (measured by the tests below, against std, i.e. glibc)
 //!

@@ -45,7 +45,7 @@
 //! was tried (BENCHMARKS.md, "Many states per call"): the quadruped's inverse dynamics 1.8×
 //! faster, but its mass matrix and forward dynamics 1.5× slower, so it stays on `wide`.
 //! (`std::simd` is not stable.)
-
+//!
 //! # Speed (BENCHMARKS.md, "Many states per call")
 //!
 //! In the default build, on states already in lanes, [`F64x4`] evaluates the UR5's inverse
