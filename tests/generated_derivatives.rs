@@ -54,7 +54,7 @@ mechanism! {
     body left { mass: 1.0, com: [0.1, 0.0, 0.0], shape: rod(length: 0.2, axis: x) }
     body right { mass: 0.7, com: [0.0, 0.05, 0.01], shape: box(size: [0.05, 0.1, 0.02]) }
     body slider { mass: 0.4, com: [0.02, 0.0, 0.01], shape: sphere(radius: 0.03) }
-    joint float: free(ground -> base);
+    joint float: free(ground -> base) { damping: 0.15, armature: 0.02 }
     joint hip_left: revolute(base -> left) { axis: [0.3, 0.2, 1.0], at: [0.1, 0.1, 0.0], rotation: rpy(0.1, 0.2, 0.3), damping: 0.2 }
     joint hip_right: revolute(base -> right) { axis: y, at: [0.1, -0.1, 0.0], armature: 0.05 }
     joint slide: prismatic(left -> slider) { axis: x, at: [0.2, 0.0, 0.0] }

@@ -23,7 +23,7 @@
 //! | `frame_placements(q)`, `frame_jacobians(q)`, `frame_jacobians_local(q)` | each operational frame's (R, p) in the world and its 6 × nv Jacobian, world-aligned at its origin or in its own axes (asked for by name) | [`frames`] |
 //! | `frame_velocities(q, v)`, `frame_acceleration_biases(q, v)` | each operational frame's [v; ω] and J̇ q̇, world axes at its origin (asked for by name) | [`frames`] + [`rnea`]'s forward sweep |
 //! | `centroidal_bias(q, v)` | Ȧ_G q̇ (asked for by name) | [`kinematics`] + [`rnea`]'s forward sweep |
-//! | `inverse_dynamics_derivatives(q, v, a)` | (∂τ/∂q, ∂τ/∂q̇), q in the tangent space (asked for by name) | [`rnea`] + [`derivatives`]; ∂τ/∂q̇ = 2 C + diag(b) by [`coriolis`] in the joint coordinates' columns where that is cheaper |
+//! | `inverse_dynamics_derivatives(q, v, a)` | (∂τ/∂q, ∂τ/∂q̇), q in the tangent space (asked for by name) | [`rnea`] + [`derivatives`]; where that is cheaper, ∂τ/∂q̇ = 2 C + diag(b) by [`coriolis`] in the joint coordinates' columns and a free joint's columns of ∂τ/∂q̇ and ∂τ/∂q from M and C ([`free_joint_derivatives`]) |
 //! | `forward_dynamics_derivatives(q, v, tau)` | (∂q̈/∂q, ∂q̈/∂q̇) (asked for by name) | the cheapest of: [`derivatives`] of `forward_dynamics`' expansion, or −M⁻¹ ∂τ/∂x by [`rnea`] + [`derivatives`] + [`ldlt`] with q̈ by `forward_dynamics`' method or by the solves' own factorization, solved column by column in straight-line code or all columns at once by a loop (`dynamics_runtime::tree_ldlt`, SIMD across the columns) |
 //! | `mass_matrix_inverse(q)` | M(q)⁻¹ (asked for by name) | [`crba`] + [`ldlt`] |
 //! | `force_analysis(q, v, a)` | every reaction component and driving effort, with the pivots of R | [`statics`] + [`qr`] |
@@ -44,10 +44,11 @@ use crate::expand::frames::{self, JacobianAxes};
 use crate::expand::geometry::{BodyInertia, JointTransform};
 use crate::expand::rnea::{self, SweepInputs};
 use crate::expand::{
-    aba, coriolis, crba, energy, fresh_graph, inputs, kinematics, ldlt, qr, statics,
+    aba, coriolis, crba, energy, free_joint_derivatives, fresh_graph, inputs, kinematics, ldlt, qr,
+    statics,
 };
 use crate::ir::{Arg, Function, FunctionSpec, Output, TreeSolve};
-use crate::model::{JointKind, Model};
+use crate::model::{JointKind, LoadFrame, Model};
 use crate::passes::base_parameters;
 use crate::sym::{Array, Graph, Node, Vec3};
 
@@ -430,40 +431,36 @@ fn state_jacobians(g: &Graph, model: &Model, outputs: &[Node]) -> Output {
     )
 }
 
-/// How the derivative outputs expand ∂τ/∂q̇.
+/// How the derivative outputs expand ∂τ/∂q̇ (and a free joint's columns of ∂τ/∂q).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum VelocityColumns {
     /// Forward-mode differentiation of Newton–Euler, like the other columns.
     ForwardMode,
     /// 2 C(q, q̇) + diag(b) ([`velocity_jacobian_by_coriolis`]) in the columns of joint
-    /// coordinates; forward mode in a free joint's.
+    /// coordinates, and a free joint's columns of ∂τ/∂q̇ and ∂τ/∂q from M and C
+    /// ([`free_joint_derivatives`]).
     Coriolis,
 }
 
-/// The ways ∂τ/∂q̇ can be expanded for `model`: forward mode always, 2 C + diag(b) in the
-/// columns of joint coordinates when there are any.
-fn velocity_columns(model: &Model) -> Vec<VelocityColumns> {
-    let mut ways = vec![VelocityColumns::ForwardMode];
-    if model.bodies.iter().any(|b| b.joint.kind != JointKind::Free) {
-        ways.push(VelocityColumns::Coriolis);
-    }
-    ways
+/// The ways ∂τ/∂q̇ can be expanded: forward mode, or from the Coriolis and mass matrices.
+fn velocity_columns() -> Vec<VelocityColumns> {
+    vec![VelocityColumns::ForwardMode, VelocityColumns::Coriolis]
 }
 
-/// ∂τ/∂q̇ with the columns of joint coordinates = 2 C(q, q̇) + diag(b), C the
+/// ∂τ/∂q̇ = 2 C(q, q̇) + diag(b) in the columns of joint coordinates, C the
 /// Christoffel-consistent Coriolis matrix (over its cheapest base parameters, as the
 /// `coriolis_matrix` output). With generalized coordinates, C_kj = Σ_i Γ_kij q̇_i for the
 /// Christoffel symbols Γ_kij, symmetric in i and j, so C(q, q̇) q̇ = Σ_ij Γ_kij q̇_i q̇_j and
 /// ∂(C q̇)_k/∂q̇_j = 2 Σ_i Γ_kij q̇_i = 2 C_kj; M(q) q̈, g(q) and the applied loads Q(q) do
 /// not depend on q̇, and damping adds b. A free joint's velocities are the body's twist, not
 /// derivatives of coordinates: Γ_kij is not symmetric when i and j are both twist
-/// components (the twists' commutator), so its six columns are forward-mode derivatives of
-/// `tau` (tested on a free base carrying a 12-link chain).
+/// components (the twists' commutator), and its six columns add M's columns times that
+/// commutator ([`free_joint_derivatives::velocity_column`]).
 fn velocity_jacobian_by_coriolis(
     g: &Graph,
     model: &Model,
     (transforms, inertias): (&[JointTransform], &[BodyInertia]),
-    (tau, v): (&[Node], &[Node]),
+    v: &[Node],
 ) -> Vec<Vec<Node>> {
     let build = |i: &[BodyInertia]| coriolis::coriolis_matrix(g, model, transforms, i, v);
     let c = build(&base_parameters::regroup(
@@ -481,10 +478,12 @@ fn velocity_jacobian_by_coriolis(
     for body in &model.bodies {
         let k = body.joint.idx_v;
         if body.joint.kind == JointKind::Free {
-            for col in k..k + 6 {
-                let forward = derivatives::column(g, model, tau, With::Array(Array::V), col);
-                for (row, entry) in jacobian.iter_mut().zip(forward) {
-                    row[col] = entry;
+            let m = regrouped_mass_matrix(g, model, transforms, inertias);
+            for twist in 0..6 {
+                let column =
+                    free_joint_derivatives::velocity_column(g, &body.joint, (&m, &c), v, twist);
+                for (row, entry) in jacobian.iter_mut().zip(column) {
+                    row[k + twist] = entry;
                 }
             }
         } else {
@@ -496,8 +495,46 @@ fn velocity_jacobian_by_coriolis(
     jacobian
 }
 
-/// ∂τ/∂x for the derivative outputs: forward mode, but ∂τ/∂q̇ by `velocity` (`v`: the
-/// velocity inputs `tau` was expanded on).
+/// ∂τ/∂q by forward mode, but for a free joint on the ground in a mechanism without loads
+/// given in world axes, whose columns come from M
+/// ([`free_joint_derivatives::configuration_column`]).
+fn configuration_jacobian_with_free_columns(
+    g: &Graph,
+    model: &Model,
+    (transforms, inertias): (&[JointTransform], &[BodyInertia]),
+    tau: &[Node],
+) -> Vec<Vec<Node>> {
+    let mut jacobian = derivatives::jacobian(g, model, tau, With::Configuration);
+    if model
+        .loads
+        .iter()
+        .any(|load| load.frame == LoadFrame::World)
+    {
+        return jacobian;
+    }
+    for (body, transform) in model.bodies.iter().zip(transforms) {
+        if body.joint.kind != JointKind::Free || body.parent.is_some() {
+            continue;
+        }
+        let m = regrouped_mass_matrix(g, model, transforms, inertias);
+        for k in 0..6 {
+            let column = free_joint_derivatives::configuration_column(
+                g,
+                model,
+                (&body.joint, transform),
+                &m,
+                k,
+            );
+            for (row, entry) in jacobian.iter_mut().zip(column) {
+                row[body.joint.idx_v + k] = entry;
+            }
+        }
+    }
+    jacobian
+}
+
+/// ∂τ/∂x for the derivative outputs: forward mode, or by `velocity` (`v`: the velocity
+/// inputs `tau` was expanded on).
 fn inverse_dynamics_jacobian(
     g: &Graph,
     model: &Model,
@@ -506,10 +543,14 @@ fn inverse_dynamics_jacobian(
     with: With,
     velocity: VelocityColumns,
 ) -> Vec<Vec<Node>> {
-    if with == With::Array(Array::V) && velocity == VelocityColumns::Coriolis {
-        velocity_jacobian_by_coriolis(g, model, expansion, (tau, v))
-    } else {
-        derivatives::jacobian(g, model, tau, with)
+    match (with, velocity) {
+        (With::Array(Array::V), VelocityColumns::Coriolis) => {
+            velocity_jacobian_by_coriolis(g, model, expansion, v)
+        }
+        (With::Configuration, VelocityColumns::Coriolis) => {
+            configuration_jacobian_with_free_columns(g, model, expansion, tau)
+        }
+        _ => derivatives::jacobian(g, model, tau, with),
     }
 }
 
@@ -562,7 +603,7 @@ fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
         (g, output, velocity)
     };
     let cost = |(g, output, _): &(Graph, Output, VelocityColumns)| output_cost(g, output);
-    let mut candidates: Vec<_> = velocity_columns(model).into_iter().map(expand).collect();
+    let mut candidates: Vec<_> = velocity_columns().into_iter().map(expand).collect();
     let best = cheapest(&candidates, cost);
     let (graph, output, velocity) = candidates.swap_remove(best);
     let how = match velocity {
@@ -573,7 +614,8 @@ fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
         VelocityColumns::Coriolis => {
             "forward-mode differentiation of the Newton–Euler \
                                       expansion for ∂τ/∂q, and ∂τ/∂q̇ = 2 C(q, q̇) + diag(b) \
-                                      (C the Christoffel-consistent Coriolis matrix)"
+                                      (C the Christoffel-consistent Coriolis matrix; a free \
+                                      joint's columns from M and C)"
         }
     };
     Expanded {
@@ -617,7 +659,8 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
         let tau_by = match velocity {
             VelocityColumns::ForwardMode => "forward-mode derivatives of Newton–Euler",
             VelocityColumns::Coriolis => {
-                "forward-mode derivatives of Newton–Euler for ∂τ/∂q, ∂τ/∂q̇ = 2 C(q, q̇) + diag(b)"
+                "forward-mode derivatives of Newton–Euler for ∂τ/∂q, ∂τ/∂q̇ = 2 C(q, q̇) + diag(b), \
+                 a free joint's columns from M and C"
             }
         };
         let qdd_by = match method {
@@ -644,7 +687,7 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
         methods.push(ForwardMethod::MassMatrixLdlt);
     }
     let mut candidates = vec![direct];
-    for velocity in velocity_columns(model) {
+    for velocity in velocity_columns() {
         for &method in &methods {
             candidates.push(chain(method, velocity));
         }
@@ -1678,8 +1721,9 @@ pub(crate) mod tests {
         };
         assert!(doc("forward_dynamics").contains("articulated-body algorithm"));
         assert!(doc("forward_dynamics_derivatives").contains("q̈ by the same factorization"));
-        // And ∂τ/∂q̇ by 2 C + diag(b) in the joints' columns, forward mode in the base's.
+        // And ∂τ/∂q̇ by 2 C + diag(b) in the joints' columns, from M and C in the base's.
         assert!(doc("forward_dynamics_derivatives").contains("2 C(q, q̇) +"));
+        assert!(doc("forward_dynamics_derivatives").contains("free joint's columns from M and C"));
     }
 
     /// The chain rule's solves run as one loop over all columns where that is cheaper (a free
@@ -1759,5 +1803,51 @@ pub(crate) mod tests {
             joint hinge: revolute(base -> arm) { axis: z, at: [0.1, 0.0, 0.0] }
         });
         assert!(!doc(&free, "inverse_dynamics_derivatives").contains("2 C(q, q̇)"));
+    }
+
+    /// A free joint's columns of ∂τ/∂q and ∂τ/∂q̇ from M and C (with the joint's own damping
+    /// and armature, gravity off the axes) take the values forward mode gives them, and the
+    /// other columns are untouched.
+    #[test]
+    fn free_joint_columns_from_the_mass_and_coriolis_matrices_are_forward_modes() {
+        let mechanism: crate::syntax::Mechanism = syn::parse2(quote! {
+            struct Floating;
+            gravity: [0.5, -1.0, -9.0];
+            outputs: [inverse_dynamics_derivatives];
+            body base { mass: 2.0, com: [0.01, -0.02, 0.03], inertia: [[0.05, 0.002, 0.001], [0.002, 0.04, 0.003], [0.001, 0.003, 0.03]] }
+            body arm { mass: 1.0, com: [0.2, 0.01, 0.0], inertia: diag([0.01, 0.02, 0.02]) }
+            body hand { mass: 0.5, com: [0.05, 0.0, 0.02], inertia: diag([0.003, 0.002, 0.004]) }
+            joint float: free(ground -> base) { damping: 0.3, armature: 0.1 }
+            joint hinge: revolute(base -> arm) { axis: [0.2, 0.5, 1.0], at: [0.1, 0.05, 0.0], rotation: rpy(0.3, -0.2, 0.1) }
+            joint wrist: revolute(arm -> hand) { axis: y, at: [0.3, 0.0, 0.0], damping: 0.2 }
+        })
+        .expect("parses");
+        let model = crate::model::lower(&mechanism).expect("valid");
+        let (g, t, i) = fresh_graph(&model);
+        let (tau, v) = inverse_dynamics_on(&g, &model, &t, &i);
+        let input = |r: crate::sym::InputRef| {
+            let x = 0.3 + 0.17 * f64::from(r.index) + 0.05 * f64::from(r.array as u8);
+            if r.array == Array::Q && (3..7).contains(&r.index) {
+                0.5 // a unit quaternion
+            } else {
+                3.0 * x.sin()
+            }
+        };
+        for with in [With::Configuration, With::Array(Array::V)] {
+            let [forward, from_m_and_c] = [VelocityColumns::ForwardMode, VelocityColumns::Coriolis]
+                .map(|way| inverse_dynamics_jacobian(&g, &model, (&t, &i), (&tau, &v), with, way));
+            let free_columns_differ =
+                (0..8).any(|row| (0..6).any(|col| forward[row][col] != from_m_and_c[row][col]));
+            assert!(free_columns_differ, "{with:?}: built another way");
+            let [forward, from_m_and_c] =
+                [forward, from_m_and_c].map(|rows| g.eval(input, &rows.concat()));
+            for (a, b) in forward.iter().zip(&from_m_and_c) {
+                assert!(
+                    (a - b).abs() <= 1e-12 * (1.0 + a.abs()),
+                    "{with:?}: {a} vs {b}"
+                );
+            }
+            assert!(forward.iter().any(|x| x.abs() > 0.1));
+        }
     }
 }

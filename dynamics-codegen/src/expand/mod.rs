@@ -18,6 +18,7 @@
 //! | [`energy`] | kinetic and potential energy |
 //! | [`kinematics`] | body poses, point Jacobians, the centre of mass, its Jacobian, the centroidal momentum matrix and its rate |
 //! | [`derivatives`] | forward-mode derivatives of an expanded function with respect to q (tangent space), v, a or τ |
+//! | [`free_joint_derivatives`] | a free joint's columns of ∂τ/∂q̇ and ∂τ/∂q from M and C |
 //! | [`frames`] | operational frames: poses, Jacobians (world-aligned and local), J̇ q̇ |
 //! | [`statics`] | the balance equations of the force analysis and the loop closures |
 //! | [`qr`] | a Givens QR solve for the force analysis |
@@ -28,6 +29,7 @@ pub(crate) mod crba;
 pub(crate) mod derivatives;
 pub(crate) mod energy;
 pub(crate) mod frames;
+pub(crate) mod free_joint_derivatives;
 pub(crate) mod geometry;
 pub(crate) mod kinematics;
 pub(crate) mod ldlt;
