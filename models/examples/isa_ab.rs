@@ -21,12 +21,7 @@ mod paired;
 
 /// Times `f` over `states` with the baseline and the wide copies; prints one line.
 fn both_copies<S, R>(name: &str, states: &[S], f: impl Fn(&S) -> R) {
-    let [baseline, wide, ratio] = paired::paired(
-        |side| {
-            isa::choose(side == 1);
-        },
-        |_, c| f(&states[c % states.len()]),
-    );
+    let [baseline, wide, ratio] = paired::copies(states, f);
     println!("{name:<28} {baseline:>9.1} {wide:>9.1} {ratio:>10.3}");
 }
 

@@ -3,7 +3,7 @@
 # example-robot-data, installed at benchmark time, compiled by the macro as a user's crate
 # would, timed beside Pinocchio on the same states.
 #
-#   bash models/benches/pinocchio/public.sh [--quick] [--robots "go2 xarm7 g1"]
+#   bash models/benches/pinocchio/public.sh [--quick] [--isa] [--robots "go2 xarm7 g1"]
 #
 # Steps:
 #   1. `compare.sh --setup-only`: Pinocchio (pin) in ./venv and ./build/timing, as for the
@@ -20,6 +20,9 @@
 #   4. robot by robot, Pinocchio (build/timing) then the generated code, each output one call
 #      per state, medians; the two sides' state fingerprints must match;
 #   5. prints the table (also build/public/comparison.md).
+# --isa: after each robot's benchmark, its two kernel copies too, AVX2 + FMA against
+# baseline (SSE2), each dynamics output in paired rounds in one process (public_isa.rs,
+# an example of the robot's crate); the table goes to build/public/isa.md.
 # Robots: go2 (Unitree quadruped, free base, 18 dof), xarm7 (7-dof arm), g1 (Unitree humanoid,
 # 29 joints, free base, 35 dof). Nothing of example-robot-data is committed.
 set -euo pipefail
@@ -28,10 +31,12 @@ HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(cd "$HERE/../../.." && pwd)"
 ROBOTS="go2 xarm7 g1"
 QUICK=0
+ISA=0
 ERD_VERSION="${ERD_VERSION:-6.0.0}"
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) QUICK=1 ;;
+    --isa) ISA=1 ;;
     --robots) ROBOTS="$2"; shift ;;
     -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
     *) echo "public.sh: unknown argument $1 (try --help)" >&2; exit 2 ;;
@@ -81,6 +86,9 @@ OUTPUTS="inverse_dynamics, mass_matrix, forward_dynamics, gravity, bias, corioli
 : > "$OUT/build.tsv"
 : > "$OUT/criterion.log"
 : > "$OUT/load.tsv"
+if [ "$ISA" = 1 ]; then
+  printf '| robot | output | baseline ns | AVX2 + FMA ns | wide / baseline |\n| --- | --- | ---: | ---: | ---: |\n' > "$OUT/isa.md"
+fi
 # v0 symbol mangling keeps the generic arguments in the symbols (for the code sizes); it
 # changes no code.
 export RUSTFLAGS="-C symbol-mangling-version=v0"
@@ -109,6 +117,10 @@ serde_json = { version = "1", features = ["float_roundtrip"] }
 name = "public"
 path = "$HERE/public_bench.rs"
 harness = false
+
+[[example]]
+name = "isa"
+path = "$HERE/public_isa.rs"
 
 [profile.release]
 opt-level = 3
@@ -167,6 +179,12 @@ EOF
     cargo bench -q --manifest-path "$CRATE/Cargo.toml" --bench public -- \
     "${CRIT_ARGS[@]}" --save-baseline "$BASELINE" >> "$OUT/criterion.log" 2>&1 ||
     { tail -30 "$OUT/criterion.log" >&2; fail "$robot's benchmark failed (log: $OUT/criterion.log)"; }
+  if [ "$ISA" = 1 ]; then
+    step "$robot: the baseline and the AVX2 + FMA copies, paired (load average $(cut -d' ' -f1-3 /proc/loadavg))"
+    PUBLIC_ROBOT="$robot" cargo run -q --release --manifest-path "$CRATE/Cargo.toml" --example isa \
+      >> "$OUT/isa.md" 2>> "$CRATE/cargo.log" ||
+      { tail -30 "$CRATE/cargo.log" >&2; fail "$robot's isa example failed (log: $CRATE/cargo.log)"; }
+  fi
 done < "$OUT/robots.tsv"
 
 step "joining the results"
@@ -275,3 +293,9 @@ text = "\n".join(line for line in text if line is not None)
 print(text)
 open(os.path.join(out_dir, "comparison.md"), "w").write(text + "\n")
 PYTHON
+if [ "$ISA" = 1 ]; then
+  echo
+  echo "The two copies of the generated code, paired in one process (wide / baseline < 1: the"
+  echo "AVX2 + FMA copy is faster):"
+  cat "$OUT/isa.md"
+fi

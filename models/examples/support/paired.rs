@@ -1,8 +1,9 @@
 //! Two sides timed against each other in one process, for comparisons smaller than a
 //! shared host's drift between two runs: 41 rounds, each timing 20 000 calls of either side
 //! back to back, the order alternating; the figure is the median of the per-round ratios.
-//! Used by the `isa_ab` example and by `models/tools/generated_ab.sh` (which copies this
-//! file into its throwaway crate).
+//! Used by the `isa_ab` example, `models/benches/pinocchio/public_isa.rs`, and
+//! `models/tools/generated_ab.sh` and `call_context.sh` (which copy this file into their
+//! throwaway crates).
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -33,6 +34,20 @@ pub fn paired<R>(
         ratio.push(ns[1] / ns[0]);
     }
     [median(a), median(b), median(ratio)]
+}
+
+/// [`paired`] for the two copies of generated code (`dynamics_runtime::isa`): side 0 runs the
+/// baseline copies, side 1 the AVX2 + FMA copies (switched with `isa::choose`), each call
+/// `f` of the next of `states`. The medians: baseline ns, wide ns, and wide / baseline.
+/// Leaves the wide copies chosen.
+#[allow(dead_code)] // not every crate that includes this file compares the two copies
+pub fn copies<S, R>(states: &[S], f: impl Fn(&S) -> R) -> [f64; 3] {
+    paired(
+        |side| {
+            dynamics_runtime::isa::choose(side == 1);
+        },
+        |_, c| f(&states[c % states.len()]),
+    )
 }
 
 fn median(mut x: Vec<f64>) -> f64 {
