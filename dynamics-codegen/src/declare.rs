@@ -674,15 +674,49 @@ pub fn dynamics_traits(model: &Model, rt: &TokenStream) -> TokenStream {
 
 /// `impl<T: Scalar> Lagrangian<T>` (M, C and g behind a trait, for variational integrators)
 /// when the mechanism generates all three beside forward dynamics, delegating to the
-/// generated `mass_matrix`, `coriolis_matrix` and `gravity`.
+/// generated `mass_matrix`, `coriolis_matrix` and `gravity`, and to `momentum_derivatives`
+/// when it generates that too (the variational integrator's exact Newton Jacobian).
 fn lagrangian_trait(model: &Model, rt: &TokenStream) -> TokenStream {
     let o = &model.outputs;
     if !(o.forward_dynamics && o.mass_matrix && o.coriolis && o.gravity) || model.nv == 0 {
         return TokenStream::new();
     }
     let name = &model.name;
-    let (nq, nv, np) = (model.nq, model.nv, model.parameters.len());
+    let (nq, nv, np, nl) = (
+        model.nq,
+        model.nv,
+        model.parameters.len(),
+        model.load_inputs,
+    );
     let p_arg = (np > 0).then(|| quote!(parameters));
+    let momentum_derivatives = o.momentum_derivatives.then(|| {
+        let args = (np > 0)
+            .then(|| quote!(parameters,))
+            .into_iter()
+            .chain((nl > 0).then(|| quote!(loads,)));
+        // With loads the generated function also gives ∂ṗ/∂loads, fourth.
+        let call = if nl > 0 {
+            quote! {
+                let (dp_dq, dpdot_dq, dpdot_dv, _) = #name::momentum_derivatives(q, v, #(#args)*);
+                Some((dp_dq, dpdot_dq, dpdot_dv))
+            }
+        } else {
+            quote!(Some(#name::momentum_derivatives(q, v, #(#args)*)))
+        };
+        quote! {
+            #[inline]
+            fn momentum_derivatives(
+                q: &[T; #nq],
+                v: &[T; #nv],
+                parameters: &[T; #np],
+                loads: &[T; #nl],
+            ) -> Option<([[T; #nv]; #nv], [[T; #nv]; #nv], [[T; #nv]; #nv])> {
+                let _ = parameters;
+                let _ = loads;
+                #call
+            }
+        }
+    });
     quote! {
         impl<T: #rt::Scalar> #rt::Lagrangian<T> for #name {
             #[inline]
@@ -704,6 +738,7 @@ fn lagrangian_trait(model: &Model, rt: &TokenStream) -> TokenStream {
                 let _ = parameters;
                 #name::gravity(q, #p_arg)
             }
+            #momentum_derivatives
         }
     }
 }

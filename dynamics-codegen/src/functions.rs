@@ -26,6 +26,7 @@
 //! | `inverse_dynamics_derivatives(q, v, a)` | (∂τ/∂q, ∂τ/∂q̇), q in the tangent space (asked for by name) | [`rnea`] + [`derivatives`]; where that is cheaper, ∂τ/∂q̇ = 2 C + diag(b) by [`coriolis`] in the joint coordinates' columns and a free joint's columns of ∂τ/∂q̇ and ∂τ/∂q from M and C ([`free_joint_derivatives`]) |
 //! | `forward_dynamics_derivatives(q, v, tau)` | (∂q̈/∂q, ∂q̈/∂q̇) (asked for by name) | the cheapest of: [`derivatives`] of `forward_dynamics`' expansion, or −M⁻¹ ∂τ/∂x by [`rnea`] + [`derivatives`] + [`ldlt`] with q̈ by `forward_dynamics`' method or by the solves' own factorization, solved column by column in straight-line code or all columns at once by a loop (`dynamics_runtime::tree_ldlt`, SIMD across the columns) |
 //! | `mass_matrix_inverse(q)` | M(q)⁻¹ (asked for by name) | [`crba`] + [`ldlt`] |
+//! | `momentum_derivatives(q, v)` | (∂p/∂q, ∂ṗ/∂q, ∂ṗ/∂q̇) of p = M(q) q̇ and ṗ = τ + Ṁ q̇ − (C q̇ + g + b q̇ − Q) (asked for by name) | [`crba`] + [`rnea`] + [`derivatives`] (Ṁ q̇ along q̇, then forward mode) |
 //! | `force_analysis(q, v, a)` | every reaction component and driving effort, with the pivots of R | [`statics`] + [`qr`] |
 //! | `constraint_residual(q)`, `constraint_jacobian(q)`, `constraint_bias(q, v)` | φ, Φ_q, γ of the loop closures | [`statics`] |
 //!
@@ -288,6 +289,13 @@ pub(crate) const CATALOG: &[Entry] = &[
         arrays: &[Array::Q],
         loads: false,
         expand: mass_matrix_inverse,
+    },
+    Entry {
+        name: "momentum_derivatives",
+        wanted: |m| m.outputs.momentum_derivatives && m.nv > 0,
+        arrays: &[Array::Q, Array::V],
+        loads: true,
+        expand: momentum_derivatives,
     },
     Entry {
         name: "force_analysis",
@@ -872,6 +880,76 @@ fn coriolis_matrix(model: &Model) -> Expanded {
         doc: "Coriolis matrix C(q, q̇), the Christoffel-consistent one: C q̇ is the Coriolis and \
               centrifugal force and Ṁ − 2C is skew-symmetric."
             .to_owned(),
+    }
+}
+
+/// The derivatives of the generalized momentum p = M(q) q̇ and of its rate
+/// ṗ = Ṁ q̇ + M q̈ = Ṁ q̇ + τ − (C q̇ + g + b q̇ − Q), the Euler–Lagrange equations
+/// d/dt ∂L/∂q̇ = ∂L/∂q + τ + Q − b q̇ solved for the momentum's rate (∂L/∂q = Cᵀ q̇ − g in
+/// joint coordinates, since Ṁ = C + Cᵀ). Ṁ q̇ is M(q) v differentiated along q̇ = v
+/// ([`derivatives::along_velocity`]), the bracket is the Newton–Euler bias with the loads,
+/// and the Jacobians are forward mode over both: second derivatives of M, which no other
+/// output holds (a variational integrator's exact Newton Jacobian needs them).
+fn momentum_derivatives(model: &Model) -> Expanded {
+    let (g, t, i) = fresh_graph(model);
+    let v = inputs(&g, Array::V, model.nv);
+    let mass = regrouped_mass_matrix(&g, model, &t, &i);
+    let momentum: Vec<Node> = mass
+        .iter()
+        .map(|row| {
+            row.iter()
+                .zip(&v)
+                .fold(g.zero(), |sum, (&m, &vj)| g.add(sum, g.mul(m, vj)))
+        })
+        .collect();
+    let zero = vec![g.zero(); model.nv];
+    let bias = joint_forces(
+        &g,
+        model,
+        &t,
+        &i,
+        &SweepInputs {
+            velocity: &v,
+            acceleration: &zero,
+            gravity: true,
+            loads: has_loads(model),
+        },
+    );
+    // ṗ − τ = Ṁ q̇ − bias(q, q̇).
+    let rate: Vec<Node> = derivatives::along_velocity(&g, model, &momentum)
+        .into_iter()
+        .zip(&bias)
+        .map(|(m_dot_v, &b)| g.sub(m_dot_v, b))
+        .collect();
+    let mut matrices = vec![Output::Matrix(derivatives::jacobian(
+        &g,
+        model,
+        &momentum,
+        With::Configuration,
+    ))];
+    matrices.extend(
+        derivative_inputs(model)
+            .into_iter()
+            .map(|with| Output::Matrix(derivatives::jacobian(&g, model, &rate, with))),
+    );
+    let loads_doc = if has_loads(model) {
+        " The fourth matrix, nv × NUM_LOAD_INPUTS, is ∂ṗ/∂loads."
+    } else {
+        ""
+    };
+    Expanded {
+        graph: g,
+        output: Output::Tuple(matrices),
+        doc: format!(
+            "Derivatives of the generalized momentum p = M(q) q̇ and of its rate \
+             ṗ = Ṁ q̇ + M q̈ = τ + Ṁ q̇ − (C q̇ + g + b q̇ − Q), which in joint coordinates is \
+             τ + C(q, q̇)ᵀ q̇ − g(q) + Q − b q̇ (the Euler–Lagrange equations, the momentum \
+             observer's model): (∂p/∂q, ∂ṗ/∂q, ∂ṗ/∂q̇), each nv × nv (row i: p_i or ṗ_i), at \
+             (`q`, `v`); ∂p/∂q̇ = M(q), ∂ṗ/∂τ = 1. Forward-mode differentiation of M(q) v, of \
+             its rate along q̇ and of the Newton–Euler bias: second derivatives of M, which \
+             the variational midpoint integrator's exact Newton Jacobian needs. \
+             {TANGENT_CONVENTION}{loads_doc}"
+        ),
     }
 }
 

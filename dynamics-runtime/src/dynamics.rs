@@ -90,6 +90,21 @@ pub trait Lagrangian<T: Scalar>: Dynamics<T> {
     ) -> Self::Matrix;
     /// g(q) = ∂V/∂q, the joint forces that hold the mechanism still at q.
     fn gravity(q: &Self::Configuration, parameters: &Self::Parameters) -> Self::Velocity;
+    /// (∂p/∂q, ∂ṗ/∂q, ∂ṗ/∂q̇) of the generalized momentum p = M(q) q̇ and its rate
+    /// ṗ = τ + C(q, q̇)ᵀ q̇ − g(q) + Q − b q̇, each `NV × NV` by rows (∂ṗ/∂τ = 1, so τ is not
+    /// an argument): the generated `momentum_derivatives` when the mechanism asks for that
+    /// output, `None` otherwise (the default).
+    /// [`variational_midpoint`](crate::integrators::variational_midpoint) builds its exact
+    /// Newton Jacobian from them when they are there.
+    fn momentum_derivatives(
+        q: &Self::Configuration,
+        v: &Self::Velocity,
+        parameters: &Self::Parameters,
+        loads: &Self::Loads,
+    ) -> Option<(Self::Matrix, Self::Matrix, Self::Matrix)> {
+        let _ = (q, v, parameters, loads);
+        None
+    }
 }
 
 /// Why [`try_integrate_configuration`] cannot apply its free-joint table to its arrays.

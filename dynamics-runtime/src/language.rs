@@ -124,6 +124,7 @@
 //! | `inverse_dynamics_derivatives` | (∂τ/∂q, ∂τ/∂q̇); ∂τ/∂q̈ = M; with loads also ∂τ/∂loads | `q, v, a` (+ loads) | `([[T; NV]; NV], [[T; NV]; NV])`, with loads `(.., .., [[T; NUM_LOAD_INPUTS]; NV])` |
 //! | `forward_dynamics_derivatives` | (∂q̈/∂q, ∂q̈/∂q̇); ∂q̈/∂τ = M⁻¹; with loads also ∂q̈/∂loads | `q, v, tau` (+ loads) | as `inverse_dynamics_derivatives` |
 //! | `mass_matrix_inverse` | M(q)⁻¹ | `q` | `[[T; NV]; NV]` |
+//! | `momentum_derivatives` | (∂p/∂q, ∂ṗ/∂q, ∂ṗ/∂q̇) of the generalized momentum p = M(q) q̇ and its rate ṗ = τ + Ṁ q̇ − (C q̇ + g + b q̇ − Q) (= τ + Cᵀ q̇ − g + Q − b q̇ in joint coordinates); ∂p/∂q̇ = M, ∂ṗ/∂τ = 1; with loads also ∂ṗ/∂loads. Second derivatives of M: the variational midpoint integrator's exact Newton Jacobian (through [`Lagrangian::momentum_derivatives`](crate::Lagrangian::momentum_derivatives)) | `q, v` (+ loads) | as `inverse_dynamics_derivatives`, three matrices (four with loads) |
 //!
 //! `kinetic_energy` and `potential_energy` come together, as do the three constraint
 //! functions. The kinematics and derivative outputs (from `joint_placements` on) are

@@ -77,6 +77,23 @@ fn configuration_tangent(g: &Graph, model: &Model, col: usize) -> impl Fn(InputR
     }
 }
 
+/// The derivative of `outputs` along q̇ = v with every other input held: Σ_j ∂y/∂q_j v_j,
+/// q moving along q ⊕ t v (for a free joint v is the twist in the base's own frame), the
+/// inputs `v` standing for the velocity. For y = M(q) v this is Ṁ v.
+pub fn along_velocity(g: &Graph, model: &Model, outputs: &[Node]) -> Vec<Node> {
+    let tangents: Vec<_> = (0..model.nv)
+        .map(|col| configuration_tangent(g, model, col))
+        .collect();
+    g.derivative(outputs, |r| {
+        tangents
+            .iter()
+            .enumerate()
+            .fold(g.zero(), |sum, (col, tangent)| {
+                g.add(sum, g.mul(tangent(r), g.input(Array::V, col)))
+            })
+    })
+}
+
 /// What a column differentiates with respect to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum With {

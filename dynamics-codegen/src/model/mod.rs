@@ -96,13 +96,15 @@ pub struct Outputs {
     pub forward_dynamics_derivatives: bool,
     /// M(q)⁻¹.
     pub mass_matrix_inverse: bool,
+    /// ∂p/∂q, ∂ṗ/∂q and ∂ṗ/∂q̇ of the generalized momentum p = M(q) q̇.
+    pub momentum_derivatives: bool,
 }
 
 impl Outputs {
     /// The output names the language accepts: the names of the functions they generate
     /// (`kinetic_energy` and `potential_energy` come together, as do the three constraint
     /// functions).
-    pub const NAMES: [&'static str; 34] = [
+    pub const NAMES: [&'static str; 35] = [
         "inverse_dynamics",
         "gravity",
         "bias",
@@ -137,6 +139,7 @@ impl Outputs {
         "inverse_dynamics_derivatives",
         "forward_dynamics_derivatives",
         "mass_matrix_inverse",
+        "momentum_derivatives",
     ];
 
     /// Short names accepted too, each with the name it stands for.
@@ -183,6 +186,7 @@ impl Outputs {
             inverse_dynamics_derivatives: false,
             forward_dynamics_derivatives: false,
             mass_matrix_inverse: false,
+            momentum_derivatives: false,
         }
     }
 
@@ -241,6 +245,7 @@ impl Outputs {
             "inverse_dynamics_derivatives" => &mut self.inverse_dynamics_derivatives,
             "forward_dynamics_derivatives" => &mut self.forward_dynamics_derivatives,
             "mass_matrix_inverse" => &mut self.mass_matrix_inverse,
+            "momentum_derivatives" => &mut self.momentum_derivatives,
             "constraint_residual" | "constraint_jacobian" | "constraint_bias" => {
                 &mut self.constraints
             }
@@ -263,6 +268,7 @@ impl Outputs {
             || self.inverse_dynamics_derivatives
             || self.forward_dynamics_derivatives
             || self.mass_matrix_inverse
+            || self.momentum_derivatives
     }
 }
 
