@@ -23,7 +23,7 @@
 //! | `frame_placements(q)`, `frame_jacobians(q)`, `frame_jacobians_local(q)` | each operational frame's (R, p) in the world and its 6 × nv Jacobian, world-aligned at its origin or in its own axes (asked for by name) | [`frames`] |
 //! | `frame_velocities(q, v)`, `frame_acceleration_biases(q, v)` | each operational frame's [v; ω] and J̇ q̇, world axes at its origin (asked for by name) | [`frames`] + [`rnea`]'s forward sweep |
 //! | `centroidal_bias(q, v)` | Ȧ_G q̇ (asked for by name) | [`kinematics`] + [`rnea`]'s forward sweep |
-//! | `inverse_dynamics_derivatives(q, v, a)` | (∂τ/∂q, ∂τ/∂q̇), q in the tangent space (asked for by name) | [`rnea`] + [`derivatives`]; where that is cheaper, ∂τ/∂q̇ = 2 C + diag(b) by [`coriolis`] in the joint coordinates' columns and a free joint's columns of ∂τ/∂q̇ and ∂τ/∂q from M and C ([`free_joint_derivatives`]) |
+//! | `inverse_dynamics_derivatives(q, v, a)` | (∂τ/∂q, ∂τ/∂q̇), q in the tangent space (asked for by name) | [`rnea`] + [`derivatives`]; where that is cheaper, ∂τ/∂q̇ = 2 C + diag(b) by [`coriolis`] in the joint coordinates' columns and a free joint's columns of ∂τ/∂q̇ and ∂τ/∂q from M and C ([`free_joint_derivatives`]), and with it ∂τ/∂q by the analytical recursion ([`rnea_derivatives`]) |
 //! | `forward_dynamics_derivatives(q, v, tau)` | (∂q̈/∂q, ∂q̈/∂q̇) (asked for by name) | the cheapest of: [`derivatives`] of `forward_dynamics`' expansion, or −M⁻¹ ∂τ/∂x by [`rnea`] + [`derivatives`] + [`ldlt`] with q̈ by `forward_dynamics`' method or by the solves' own factorization, solved column by column in straight-line code or all columns at once by a loop (`dynamics_runtime::tree_ldlt`, SIMD across the columns) |
 //! | `mass_matrix_inverse(q)` | M(q)⁻¹ (asked for by name) | [`crba`] + [`ldlt`] |
 //! | `momentum_derivatives(q, v)` | (∂p/∂q, ∂ṗ/∂q, ∂ṗ/∂q̇) of p = M(q) q̇ and ṗ = τ + Ṁ q̇ − (C q̇ + g + b q̇ − Q) (asked for by name) | [`crba`] + [`rnea`] + [`derivatives`] (Ṁ q̇ along q̇, then forward mode) |
@@ -46,7 +46,7 @@ use crate::expand::geometry::{BodyInertia, JointTransform};
 use crate::expand::rnea::{self, SweepInputs};
 use crate::expand::{
     aba, coriolis, crba, energy, free_joint_derivatives, fresh_graph, inputs, kinematics, ldlt, qr,
-    statics,
+    rnea_derivatives, statics,
 };
 use crate::ir::{Arg, Function, FunctionSpec, Output, TreeSolve};
 use crate::model::{JointKind, LoadFrame, Model};
@@ -448,11 +448,20 @@ enum VelocityColumns {
     /// coordinates, and a free joint's columns of ∂τ/∂q̇ and ∂τ/∂q from M and C
     /// ([`free_joint_derivatives`]).
     Coriolis,
+    /// As `Coriolis`, and ∂τ/∂q's other columns by the analytical recursion over C's
+    /// composite terms ([`rnea_derivatives`]) where it applies (forward mode otherwise).
+    Analytic,
 }
 
-/// The ways ∂τ/∂q̇ can be expanded: forward mode, or from the Coriolis and mass matrices.
-fn velocity_columns() -> Vec<VelocityColumns> {
-    vec![VelocityColumns::ForwardMode, VelocityColumns::Coriolis]
+/// The ways ∂τ/∂q̇ (and with it ∂τ/∂q) can be expanded for `model`: forward mode, from the
+/// Coriolis and mass matrices, and that with the analytical recursion for ∂τ/∂q where it
+/// applies (no loads).
+fn velocity_columns(model: &Model) -> Vec<VelocityColumns> {
+    let mut ways = vec![VelocityColumns::ForwardMode, VelocityColumns::Coriolis];
+    if rnea_derivatives::applies(model) {
+        ways.push(VelocityColumns::Analytic);
+    }
+    ways
 }
 
 /// ∂τ/∂q̇ = 2 C(q, q̇) + diag(b) in the columns of joint coordinates, C the
@@ -469,15 +478,10 @@ fn velocity_jacobian_by_coriolis(
     model: &Model,
     (transforms, inertias): (&[JointTransform], &[BodyInertia]),
     v: &[Node],
+    basis: &CoriolisBasis,
 ) -> Vec<Vec<Node>> {
-    let build = |i: &[BodyInertia]| coriolis::coriolis_matrix(g, model, transforms, i, v);
-    let c = build(&base_parameters::regroup(
-        g,
-        model,
-        transforms,
-        inertias,
-        |i| build(i).concat(),
-    ));
+    let c_inertias = basis.get_or_init(|| coriolis_inertias(g, model, (transforms, inertias), v));
+    let c = coriolis::coriolis_matrix(g, model, transforms, c_inertias, v);
     let two = g.constant(2.0);
     let mut jacobian: Vec<Vec<Node>> = c
         .iter()
@@ -503,13 +507,29 @@ fn velocity_jacobian_by_coriolis(
     jacobian
 }
 
+/// [`coriolis_inertias`], worked out once per expansion of ∂τ/∂x (the search for them costs
+/// more than the expansion that uses them).
+type CoriolisBasis = std::cell::OnceCell<Vec<BodyInertia>>;
+
+/// The base inertial parameters over which C(q, q̇) costs least (as the `coriolis_matrix`
+/// output has them), on which ∂τ/∂q̇ = 2 C + diag(b) and the analytical ∂τ/∂q are built.
+fn coriolis_inertias(
+    g: &Graph,
+    model: &Model,
+    (transforms, inertias): (&[JointTransform], &[BodyInertia]),
+    v: &[Node],
+) -> Vec<BodyInertia> {
+    let build = |i: &[BodyInertia]| coriolis::coriolis_matrix(g, model, transforms, i, v);
+    base_parameters::regroup(g, model, transforms, inertias, |i| build(i).concat())
+}
+
 /// ∂τ/∂q by forward mode, but for a free joint on the ground in a mechanism without loads
 /// given in world axes, whose columns come from M
 /// ([`free_joint_derivatives::configuration_column`]).
 fn configuration_jacobian_with_free_columns(
     g: &Graph,
     model: &Model,
-    (transforms, inertias): (&[JointTransform], &[BodyInertia]),
+    expansion: (&[JointTransform], &[BodyInertia]),
     tau: &[Node],
 ) -> Vec<Vec<Node>> {
     let mut jacobian = derivatives::jacobian(g, model, tau, With::Configuration);
@@ -520,6 +540,41 @@ fn configuration_jacobian_with_free_columns(
     {
         return jacobian;
     }
+    fill_free_configuration_columns(g, model, expansion, &mut jacobian);
+    jacobian
+}
+
+/// ∂τ/∂q by the analytical recursion ([`rnea_derivatives`]) over C's base parameters, a
+/// free joint's columns from M; by [`configuration_jacobian_with_free_columns`] where the
+/// recursion does not apply (loads).
+fn configuration_jacobian_analytic(
+    g: &Graph,
+    model: &Model,
+    expansion: (&[JointTransform], &[BodyInertia]),
+    (tau, v): (&[Node], &[Node]),
+    basis: &CoriolisBasis,
+) -> Vec<Vec<Node>> {
+    if !rnea_derivatives::applies(model) {
+        return configuration_jacobian_with_free_columns(g, model, expansion, tau);
+    }
+    let transforms = expansion.0;
+    let inertias = basis.get_or_init(|| coriolis_inertias(g, model, expansion, v));
+    let terms = coriolis::composite_terms(g, model, transforms, inertias, v);
+    let a = inputs(g, Array::A, model.nv);
+    let mut jacobian =
+        rnea_derivatives::configuration_jacobian(g, model, (transforms, inertias), &terms, (v, &a));
+    fill_free_configuration_columns(g, model, expansion, &mut jacobian);
+    jacobian
+}
+
+/// Writes the columns of ∂τ/∂q of a free joint on the ground from M
+/// ([`free_joint_derivatives::configuration_column`]; no loads in world axes).
+fn fill_free_configuration_columns(
+    g: &Graph,
+    model: &Model,
+    (transforms, inertias): (&[JointTransform], &[BodyInertia]),
+    jacobian: &mut [Vec<Node>],
+) {
     for (body, transform) in model.bodies.iter().zip(transforms) {
         if body.joint.kind != JointKind::Free || body.parent.is_some() {
             continue;
@@ -538,25 +593,27 @@ fn configuration_jacobian_with_free_columns(
             }
         }
     }
-    jacobian
 }
 
 /// ∂τ/∂x for the derivative outputs: forward mode, or by `velocity` (`v`: the velocity
-/// inputs `tau` was expanded on).
+/// inputs `tau` was expanded on; `basis`: shared by the calls for the same expansion).
 fn inverse_dynamics_jacobian(
     g: &Graph,
     model: &Model,
     expansion: (&[JointTransform], &[BodyInertia]),
     (tau, v): (&[Node], &[Node]),
-    with: With,
-    velocity: VelocityColumns,
+    (with, velocity): (With, VelocityColumns),
+    basis: &CoriolisBasis,
 ) -> Vec<Vec<Node>> {
     match (with, velocity) {
-        (With::Array(Array::V), VelocityColumns::Coriolis) => {
-            velocity_jacobian_by_coriolis(g, model, expansion, v)
+        (With::Array(Array::V), VelocityColumns::Coriolis | VelocityColumns::Analytic) => {
+            velocity_jacobian_by_coriolis(g, model, expansion, v, basis)
         }
         (With::Configuration, VelocityColumns::Coriolis) => {
             configuration_jacobian_with_free_columns(g, model, expansion, tau)
+        }
+        (With::Configuration, VelocityColumns::Analytic) => {
+            configuration_jacobian_analytic(g, model, expansion, (tau, v), basis)
         }
         _ => derivatives::jacobian(g, model, tau, with),
     }
@@ -588,11 +645,13 @@ const TANGENT_CONVENTION: &str = "Column j of a q-derivative is the derivative a
     (Pinocchio's convention: for a free base, the increment [δv; δω] is in the base's own \
     frame, so its columns follow v, not the quaternion's four numbers).";
 
-fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
-    // ∂τ/∂q̇ by forward mode or as 2 C + diag(b), whichever costs fewer operations.
+/// ∂τ/∂x (x = q, q̇ and the loads, [`derivative_inputs`]) expanded each way
+/// [`velocity_columns`] offers, in a fresh graph each: the cheapest, with the way it took.
+fn cheapest_inverse_dynamics_jacobians(model: &Model) -> (Graph, Output, VelocityColumns) {
     let expand = |velocity: VelocityColumns| {
         let (g, t, i) = fresh_graph(model);
         let (tau, v) = inverse_dynamics_on(&g, model, &t, &i);
+        let basis = CoriolisBasis::new();
         let output = Output::Tuple(
             derivative_inputs(model)
                 .into_iter()
@@ -602,8 +661,8 @@ fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
                         model,
                         (&t, &i),
                         (&tau, &v),
-                        with,
-                        velocity,
+                        (with, velocity),
+                        &basis,
                     ))
                 })
                 .collect(),
@@ -611,9 +670,15 @@ fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
         (g, output, velocity)
     };
     let cost = |(g, output, _): &(Graph, Output, VelocityColumns)| output_cost(g, output);
-    let mut candidates: Vec<_> = velocity_columns().into_iter().map(expand).collect();
+    let mut candidates: Vec<_> = velocity_columns(model).into_iter().map(expand).collect();
     let best = cheapest(&candidates, cost);
-    let (graph, output, velocity) = candidates.swap_remove(best);
+    candidates.swap_remove(best)
+}
+
+fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
+    // ∂τ/∂q̇ by forward mode or as 2 C + diag(b), ∂τ/∂q by forward mode or the analytical
+    // recursion: whichever costs fewer operations.
+    let (graph, output, velocity) = cheapest_inverse_dynamics_jacobians(model);
     let how = match velocity {
         VelocityColumns::ForwardMode => {
             "forward-mode differentiation of the Newton–Euler \
@@ -624,6 +689,11 @@ fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
                                       expansion for ∂τ/∂q, and ∂τ/∂q̇ = 2 C(q, q̇) + diag(b) \
                                       (C the Christoffel-consistent Coriolis matrix; a free \
                                       joint's columns from M and C)"
+        }
+        VelocityColumns::Analytic => {
+            "the analytical Newton–Euler derivative recursion for ∂τ/∂q over the Coriolis \
+             matrix's composite terms, and ∂τ/∂q̇ = 2 C(q, q̇) + diag(b) (C the \
+             Christoffel-consistent Coriolis matrix; a free joint's columns from M and C)"
         }
     };
     Expanded {
@@ -670,6 +740,10 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
                 "forward-mode derivatives of Newton–Euler for ∂τ/∂q, ∂τ/∂q̇ = 2 C(q, q̇) + diag(b), \
                  a free joint's columns from M and C"
             }
+            VelocityColumns::Analytic => {
+                "the analytical derivative recursion of Newton–Euler for ∂τ/∂q, \
+                 ∂τ/∂q̇ = 2 C(q, q̇) + diag(b), a free joint's columns from M and C"
+            }
         };
         let qdd_by = match method {
             ForwardMethod::ArticulatedBody => "the articulated-body algorithm",
@@ -687,18 +761,18 @@ fn forward_dynamics_derivatives(model: &Model) -> Expanded {
     };
     // The solves factor M anyway, so q̈ by that factorization can be the cheaper chain even
     // where the articulated-body algorithm is cheaper alone (the 35-dof g1 humanoid: 6 %
-    // fewer operations): both are tried, each with ∂τ/∂q̇ by forward mode and as 2 C +
-    // diag(b) where both exist, and each with the cheaper of its two ways to solve. The
-    // first of equal costs is kept.
+    // fewer operations): both are tried, each with the cheaper of its two ways to solve.
+    // The first of equal costs is kept.
     let mut methods = vec![method];
     if method == ForwardMethod::ArticulatedBody {
         methods.push(ForwardMethod::MassMatrixLdlt);
     }
+    // The chain takes ∂τ/∂x the way that is cheapest alone (expanding every way with
+    // every method would double the compile time for a few operations at most).
+    let (_, _, velocity) = cheapest_inverse_dynamics_jacobians(model);
     let mut candidates = vec![direct];
-    for velocity in velocity_columns() {
-        for &method in &methods {
-            candidates.push(chain(method, velocity));
-        }
+    for &method in &methods {
+        candidates.push(chain(method, velocity));
     }
     let best = cheapest(&candidates, |(g, output, _)| output_cost(g, output));
     let (graph, output, how) = candidates.swap_remove(best);
@@ -732,8 +806,10 @@ fn forward_dynamics_derivatives_by_chain_rule(
     let (tau, v) = inverse_dynamics_on(g, model, t, i);
     let m = regrouped_mass_matrix(g, model, t, i);
     // ∂τ/∂x at a = q̈, by rows.
+    let basis = CoriolisBasis::new();
     let jacobian = |with: With| {
-        let rows = inverse_dynamics_jacobian(g, model, (t, i), (&tau, &v), with, velocity);
+        let rows =
+            inverse_dynamics_jacobian(g, model, (t, i), (&tau, &v), (with, velocity), &basis);
         let width = rows.first().map_or(0, Vec::len);
         let flat: Vec<Node> = rows.into_iter().flatten().collect();
         let at_qdd = g.substitute(&flat, |r| {
@@ -1913,7 +1989,10 @@ pub(crate) mod tests {
         };
         for with in [With::Configuration, With::Array(Array::V)] {
             let [forward, from_m_and_c] = [VelocityColumns::ForwardMode, VelocityColumns::Coriolis]
-                .map(|way| inverse_dynamics_jacobian(&g, &model, (&t, &i), (&tau, &v), with, way));
+                .map(|way| {
+                    let basis = CoriolisBasis::new();
+                    inverse_dynamics_jacobian(&g, &model, (&t, &i), (&tau, &v), (with, way), &basis)
+                });
             let free_columns_differ =
                 (0..8).any(|row| (0..6).any(|col| forward[row][col] != from_m_and_c[row][col]));
             assert!(free_columns_differ, "{with:?}: built another way");
@@ -1927,5 +2006,78 @@ pub(crate) mod tests {
             }
             assert!(forward.iter().any(|x| x.abs() > 0.1));
         }
+    }
+
+    /// The analytical recursion's ∂τ/∂q takes the values forward mode gives, on a free base
+    /// carrying two branches (a twisted revolute joint, a prismatic one, damping and
+    /// armature, gravity off the axes), at a state with accelerations; and it is what a
+    /// spatial 7-link arm chooses, while loads keep forward mode.
+    #[test]
+    fn analytic_configuration_columns_are_forward_modes() {
+        let mechanism: crate::syntax::Mechanism = syn::parse2(quote! {
+            struct Branched;
+            gravity: [0.5, -1.0, -9.0];
+            outputs: [inverse_dynamics_derivatives];
+            body base { mass: 2.0, com: [0.01, -0.02, 0.03], inertia: [[0.05, 0.002, 0.001], [0.002, 0.04, 0.003], [0.001, 0.003, 0.03]] }
+            body arm { mass: 1.0, com: [0.2, 0.01, 0.0], inertia: diag([0.01, 0.02, 0.02]) }
+            body hand { mass: 0.5, com: [0.05, 0.0, 0.02], inertia: diag([0.003, 0.002, 0.004]) }
+            body slider { mass: 0.3, com: [0.02, 0.01, 0.0], inertia: diag([0.001, 0.002, 0.002]) }
+            joint float: free(ground -> base) { damping: 0.3, armature: 0.1 }
+            joint hinge: revolute(base -> arm) { axis: [0.2, 0.5, 1.0], at: [0.1, 0.05, 0.0], rotation: rpy(0.3, -0.2, 0.1) }
+            joint wrist: revolute(arm -> hand) { axis: y, at: [0.3, 0.0, 0.0], damping: 0.2, armature: 0.05 }
+            joint slide: prismatic(base -> slider) { axis: [1.0, 0.2, 0.0], at: [-0.1, 0.0, 0.05] }
+        })
+        .expect("parses");
+        let model = crate::model::lower(&mechanism).expect("valid");
+        assert!(rnea_derivatives::applies(&model));
+        let (g, t, i) = fresh_graph(&model);
+        let (tau, v) = inverse_dynamics_on(&g, &model, &t, &i);
+        let input = |r: crate::sym::InputRef| {
+            let x = 0.3 + 0.17 * f64::from(r.index) + 0.05 * f64::from(r.array as u8);
+            if r.array == Array::Q && (3..7).contains(&r.index) {
+                0.5 // a unit quaternion
+            } else {
+                3.0 * x.sin()
+            }
+        };
+        let [forward, analytic] =
+            [VelocityColumns::ForwardMode, VelocityColumns::Analytic].map(|way| {
+                inverse_dynamics_jacobian(
+                    &g,
+                    &model,
+                    (&t, &i),
+                    (&tau, &v),
+                    (With::Configuration, way),
+                    &CoriolisBasis::new(),
+                )
+            });
+        let [forward, analytic] = [forward, analytic].map(|rows| g.eval(input, &rows.concat()));
+        for (k, (a, b)) in forward.iter().zip(&analytic).enumerate() {
+            assert!(
+                (a - b).abs() <= 1e-12 * (1.0 + a.abs()),
+                "∂τ/∂q entry {k}: forward mode {a}, analytical {b}"
+            );
+        }
+        // Joint columns (not only the free base's) carry values.
+        assert!((0..model.nv).any(|row| forward[row * model.nv + 7].abs() > 0.1));
+        let doc = |functions: &[Function]| {
+            functions
+                .iter()
+                .find(|f| f.spec.name == "inverse_dynamics_derivatives")
+                .map(|f| f.spec.doc.clone())
+                .expect("generated")
+        };
+        let arm = compile(chain(7, true, quote!([inverse_dynamics_derivatives])));
+        assert!(doc(&arm).contains("analytical"));
+        let loaded = compile(quote! {
+            struct Loaded;
+            outputs: [inverse_dynamics_derivatives];
+            body upper { mass: 2.0, com: [0.0, 0.0, 0.2], inertia: diag([0.02, 0.02, 0.01]) }
+            body fore { mass: 1.2, com: [0.15, 0.0, 0.0], inertia: diag([0.01, 0.02, 0.02]) }
+            joint shoulder: revolute(ground -> upper) { axis: z }
+            joint elbow: revolute(upper -> fore) { axis: y, at: [0.0, 0.0, 0.4] }
+            load push: force on fore at [0.1, 0.01, 0.0] in world;
+        });
+        assert!(!doc(&loaded).contains("analytical"));
     }
 }

@@ -96,14 +96,45 @@ fn velocities(
     out
 }
 
-/// C(q, q̇), an `nv × nv` matrix of nodes.
-pub fn coriolis_matrix(
+/// What C is built from, per body in its own frame: the twist v_i, the composite terms
+/// ½ İ^C_i (an inertia of mass 0), ½ h^C_i and I^C_i, and each joint's motion axes s and
+/// their rates ṡ = v_i × s. The analytical inverse-dynamics derivatives
+/// ([`super::rnea_derivatives`]) are built from the same terms.
+pub(crate) struct CompositeTerms {
+    /// v_i = [v_P; ω].
+    pub twists: Vec<Six>,
+    /// ½ İ^C_i.
+    pub half_rate_composite: Vec<BodyInertia>,
+    /// ½ h^C_i.
+    pub half_momenta: Vec<Six>,
+    /// I^C_i.
+    pub inertia_composite: Vec<BodyInertia>,
+    /// The joint's motion axes s, one per velocity coordinate.
+    pub subspaces: Vec<Vec<Six>>,
+    /// ṡ = v_i × s for each axis.
+    pub axis_rates: Vec<Vec<Six>>,
+}
+
+impl CompositeTerms {
+    /// (B^C_i s, B^C_iᵀ s) = ½ (İ^C_i s ± s ×* h^C_i).
+    pub fn b_times(&self, g: &Graph, i: usize, s: Six) -> (Six, Six) {
+        let symmetric_part = inertia_times(g, &self.half_rate_composite[i], s);
+        let skew_part = force_cross(g, s, self.half_momenta[i]);
+        (
+            add6(g, symmetric_part, skew_part),
+            sub6(g, symmetric_part, skew_part),
+        )
+    }
+}
+
+/// The composite terms of C over `inertias` at the joint velocities `velocity`.
+pub(crate) fn composite_terms(
     g: &Graph,
     model: &Model,
     transforms: &[JointTransform],
     inertias: &[BodyInertia],
     velocity: &[Node],
-) -> Vec<Vec<Node>> {
+) -> CompositeTerms {
     let n = model.bodies.len();
     let twists = velocities(g, model, transforms, velocity);
     let (rates, mut momenta): (Vec<BodyInertia>, Vec<Six>) = (0..n)
@@ -129,15 +160,36 @@ pub fn coriolis_matrix(
         .zip(&twists)
         .map(|(s, &twist)| s.iter().map(|&col| motion_cross(g, twist, col)).collect())
         .collect();
+    CompositeTerms {
+        twists,
+        half_rate_composite: rate_composite,
+        half_momenta: momenta,
+        inertia_composite: i_composite,
+        subspaces,
+        axis_rates,
+    }
+}
+
+/// C(q, q̇), an `nv × nv` matrix of nodes.
+pub fn coriolis_matrix(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    inertias: &[BodyInertia],
+    velocity: &[Node],
+) -> Vec<Vec<Node>> {
+    let terms = composite_terms(g, model, transforms, inertias, velocity);
+    let CompositeTerms {
+        inertia_composite: i_composite,
+        subspaces,
+        axis_rates,
+        ..
+    } = &terms;
     let mut c = vec![vec![g.zero(); model.nv]; model.nv];
     for (j, body) in model.bodies.iter().enumerate() {
         for (col, &s_j) in subspaces[j].iter().enumerate() {
             let column = body.joint.idx_v + col;
-            let symmetric_part = inertia_times(g, &rate_composite[j], s_j);
-            let skew_part = force_cross(g, s_j, momenta[j]);
-            // B^C s and B^Cᵀ s.
-            let b_s = add6(g, symmetric_part, skew_part);
-            let bt_s = sub6(g, symmetric_part, skew_part);
+            let (b_s, bt_s) = terms.b_times(g, j, s_j);
             let mut f1 = add6(
                 g,
                 inertia_times(g, &i_composite[j], axis_rates[j][col]),

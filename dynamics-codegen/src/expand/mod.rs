@@ -19,6 +19,7 @@
 //! | [`kinematics`] | body poses, point Jacobians, the centre of mass, its Jacobian, the centroidal momentum matrix and its rate |
 //! | [`derivatives`] | forward-mode derivatives of an expanded function with respect to q (tangent space), v, a or τ |
 //! | [`free_joint_derivatives`] | a free joint's columns of ∂τ/∂q̇ and ∂τ/∂q from M and C |
+//! | [`rnea_derivatives`] | ∂τ/∂q by the analytical recursion over the Coriolis matrix's composite terms |
 //! | [`frames`] | operational frames: poses, Jacobians (world-aligned and local), J̇ q̇ |
 //! | [`statics`] | the balance equations of the force analysis and the loop closures |
 //! | [`qr`] | a Givens QR solve for the force analysis |
@@ -35,6 +36,7 @@ pub(crate) mod kinematics;
 pub(crate) mod ldlt;
 pub(crate) mod qr;
 pub(crate) mod rnea;
+pub(crate) mod rnea_derivatives;
 pub(crate) mod spatial;
 pub(crate) mod statics;
 
