@@ -604,17 +604,61 @@ mechanism! {
     joint elbow: revolute(upper -> lower) { axis: z, at: [0.0, -0.4, 0.0], damping: 5.0 }
 }
 
-/// The fewest Newton iterations with which the implicit midpoint step from `s` converges
-/// to `tolerance` (at most 30).
-fn newton_iterations<M: dynamics_runtime::Dynamics<f64>>(
-    s: &State<f64, M>,
-    inputs: &Inputs<f64, M>,
-    dt: f64,
-    tolerance: f64,
-) -> usize {
-    (1..=30)
-        .find(|&k| integrators::implicit_midpoint(s, inputs, dt, tolerance, k).is_ok())
-        .unwrap_or(usize::MAX)
+/// An implicit step of a mechanism with two coordinates, no parameters and no loads, with
+/// at most the given number of Newton iterations.
+type Implicit<M> =
+    fn(&State<f64, M>, &Inputs<f64, M>, f64, f64, usize) -> Result<State<f64, M>, StepError>;
+
+/// 100 steps of `step` (dt = 0.01, tolerance 1e-12) from (0.9, −0.4) rad at (1.5, −2.0) rad/s
+/// under τ = (0.3, −0.1): the end state and the Newton iterations of all steps (for each,
+/// the fewest `max_iterations` with which it converges).
+fn hundred_implicit_steps<M>(step: Implicit<M>) -> ([f64; 2], [f64; 2], usize)
+where
+    M: dynamics_runtime::Dynamics<
+        f64,
+        Configuration = [f64; 2],
+        Velocity = [f64; 2],
+        Parameters = [f64; 0],
+        Loads = [f64; 0],
+    >,
+{
+    let (tau, p, loads) = ([0.3, -0.1], [0.0; 0], [0.0; 0]);
+    let inputs = Inputs::<f64, M> {
+        tau: &tau,
+        parameters: &p,
+        loads: &loads,
+    };
+    let (dt, tolerance) = (0.01, 1e-12);
+    let mut s = State::<f64, M> {
+        q: [0.9, -0.4],
+        v: [1.5, -2.0],
+    };
+    let mut iterations = 0;
+    for _ in 0..100 {
+        iterations += (1..=30)
+            .find(|&k| step(&s, &inputs, dt, tolerance, k).is_ok())
+            .unwrap_or(usize::MAX);
+        s = step(&s, &inputs, dt, tolerance, 30).expect("converges");
+    }
+    (s.q, s.v, iterations)
+}
+
+/// The same end state to 1e-9 (both solve their step's equations to the tolerance) and no
+/// more Newton iterations for the exact Jacobian than for the differenced one.
+fn assert_exact_matches_differenced(
+    what: &str,
+    (exact_q, exact_v, exact): ([f64; 2], [f64; 2], usize),
+    (differenced_q, differenced_v, differenced): ([f64; 2], [f64; 2], usize),
+) {
+    println!("{what}: Newton iterations in 100 steps: exact {exact}, differenced {differenced}");
+    for k in 0..2 {
+        assert!(
+            (exact_q[k] - differenced_q[k]).abs() < 1e-9
+                && (exact_v[k] - differenced_v[k]).abs() < 1e-9,
+            "{what}: q {exact_q:?} v {exact_v:?} against q {differenced_q:?} v {differenced_v:?}"
+        );
+    }
+    assert!(exact <= differenced, "{what}: {exact} > {differenced}");
 }
 
 /// With the generated derivatives the implicit midpoint step takes the exact Newton Jacobian:
@@ -628,47 +672,11 @@ fn implicit_midpoint_takes_the_exact_jacobian_when_the_derivatives_are_generated
         StiffDoubleExact::acceleration_derivatives(&q, &v, &tau, &[], &[]).is_some()
             && StiffDoubleDifferenced::acceleration_derivatives(&q, &v, &tau, &[], &[]).is_none()
     );
-    let (p, loads) = ([0.0; 0], [0.0; 0]);
-    let exact_inputs = Inputs::<f64, StiffDoubleExact> {
-        tau: &tau,
-        parameters: &p,
-        loads: &loads,
-    };
-    let differenced_inputs = Inputs::<f64, StiffDoubleDifferenced> {
-        tau: &tau,
-        parameters: &p,
-        loads: &loads,
-    };
-    let mut exact = State::<f64, StiffDoubleExact> { q, v };
-    let mut differenced = State::<f64, StiffDoubleDifferenced> { q, v };
-    let (dt, tolerance) = (0.01, 1e-12);
-    let (mut iterations_exact, mut iterations_differenced) = (0, 0);
-    for _ in 0..100 {
-        iterations_exact += newton_iterations(&exact, &exact_inputs, dt, tolerance);
-        iterations_differenced +=
-            newton_iterations(&differenced, &differenced_inputs, dt, tolerance);
-        exact = integrators::implicit_midpoint(&exact, &exact_inputs, dt, tolerance, 30)
-            .expect("converges");
-        differenced =
-            integrators::implicit_midpoint(&differenced, &differenced_inputs, dt, tolerance, 30)
-                .expect("converges");
-    }
-    println!("Newton iterations in 100 steps: exact {iterations_exact}, differenced {iterations_differenced}");
-    for k in 0..2 {
-        assert!(
-            (exact.q[k] - differenced.q[k]).abs() < 1e-9,
-            "{:?} {:?}",
-            exact.q,
-            differenced.q
-        );
-        assert!(
-            (exact.v[k] - differenced.v[k]).abs() < 1e-9,
-            "{:?} {:?}",
-            exact.v,
-            differenced.v
-        );
-    }
-    assert!(iterations_exact <= iterations_differenced);
+    assert_exact_matches_differenced(
+        "implicit midpoint",
+        hundred_implicit_steps::<StiffDoubleExact>(integrators::implicit_midpoint),
+        hundred_implicit_steps::<StiffDoubleDifferenced>(integrators::implicit_midpoint),
+    );
 }
 
 mechanism! {
@@ -749,64 +757,15 @@ fn variational_jacobian_is_the_dual_derivative_of_the_residual() {
     }
 }
 
-/// The fewest Newton iterations with which the variational midpoint step from `s`
-/// converges to `tolerance` (at most 30).
-fn variational_iterations<M: Lagrangian<f64>>(
-    s: &State<f64, M>,
-    inputs: &Inputs<f64, M>,
-    dt: f64,
-    tolerance: f64,
-) -> usize {
-    (1..=30)
-        .find(|&k| integrators::variational_midpoint(s, inputs, dt, tolerance, k).is_ok())
-        .unwrap_or(usize::MAX)
-}
-
 /// With `momentum_derivatives` generated the variational midpoint step takes the exact Newton
 /// Jacobian: the same trajectory as with forward differences (both solve the discrete
 /// Euler–Lagrange equations to the tolerance), in no more Newton iterations (261 either way
 /// in 100 steps, measured; a Jacobian without its ∂p/∂q term took 345 and fails).
 #[test]
 fn variational_midpoint_takes_the_exact_jacobian_when_the_momentum_derivatives_are_generated() {
-    let (q, v, tau) = ([0.9, -0.4], [1.5, -2.0], [0.3, -0.1]);
-    let (p, loads) = ([0.0; 0], [0.0; 0]);
-    let exact_inputs = Inputs::<f64, StiffDoubleMomentum> {
-        tau: &tau,
-        parameters: &p,
-        loads: &loads,
-    };
-    let differenced_inputs = Inputs::<f64, StiffDoubleLagrangian> {
-        tau: &tau,
-        parameters: &p,
-        loads: &loads,
-    };
-    let mut exact = State::<f64, StiffDoubleMomentum> { q, v };
-    let mut differenced = State::<f64, StiffDoubleLagrangian> { q, v };
-    let (dt, tolerance) = (0.01, 1e-12);
-    let (mut iterations_exact, mut iterations_differenced) = (0, 0);
-    for _ in 0..100 {
-        iterations_exact += variational_iterations(&exact, &exact_inputs, dt, tolerance);
-        iterations_differenced +=
-            variational_iterations(&differenced, &differenced_inputs, dt, tolerance);
-        exact = integrators::variational_midpoint(&exact, &exact_inputs, dt, tolerance, 30)
-            .expect("converges");
-        differenced =
-            integrators::variational_midpoint(&differenced, &differenced_inputs, dt, tolerance, 30)
-                .expect("converges");
-    }
-    println!(
-        "variational Newton iterations in 100 steps: exact {iterations_exact}, differenced {iterations_differenced}"
+    assert_exact_matches_differenced(
+        "variational midpoint",
+        hundred_implicit_steps::<StiffDoubleMomentum>(integrators::variational_midpoint),
+        hundred_implicit_steps::<StiffDoubleLagrangian>(integrators::variational_midpoint),
     );
-    for k in 0..2 {
-        assert!(
-            (exact.q[k] - differenced.q[k]).abs() < 1e-9
-                && (exact.v[k] - differenced.v[k]).abs() < 1e-9,
-            "q {:?} v {:?} against q {:?} v {:?}",
-            exact.q,
-            exact.v,
-            differenced.q,
-            differenced.v
-        );
-    }
-    assert!(iterations_exact <= iterations_differenced);
 }
