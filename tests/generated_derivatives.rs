@@ -505,13 +505,32 @@ mechanism! {
     load spin: couple on upper;
 }
 
+/// `x` as dual numbers, element `at` (if any) the variable: ε parts are then derivatives
+/// with respect to that element.
+fn seeded<const N: usize>(x: &[f64; N], at: Option<usize>) -> [dynamics_runtime::Dual<f64>; N] {
+    use dynamics_runtime::Dual;
+    std::array::from_fn(|i| {
+        if Some(i) == at {
+            Dual::variable(x[i])
+        } else {
+            Dual::constant(x[i])
+        }
+    })
+}
+
+/// A generated derivative `got` within 1e-12 · (1 + |expected|) of the dual numbers' one.
+fn assert_dual(got: f64, expected: f64, what: &str) {
+    assert!(
+        (got - expected).abs() <= 1e-12 * (1.0 + expected.abs()),
+        "{what}: generated {got}, dual numbers {expected}"
+    );
+}
+
 /// With loads the derivative outputs have a third matrix, ∂/∂loads (nv × 12 here); all
 /// three of each output against dual numbers through the generated functions (loads
 /// nonzero), within 1e-12.
 #[test]
 fn derivatives_with_loads_include_the_loads_and_are_the_dual_number_derivatives() {
-    use dynamics_runtime::Dual;
-    type D = Dual<f64>;
     let (q, v, a) = ([0.4, -0.7, 0.12], [1.1, -0.3, 0.5], [0.2, 0.9, -1.4]);
     let loads: [f64; 12] = std::array::from_fn(|i| ((i as f64) * 0.77 + 0.1).sin() * 3.0);
     let tau = LoadedArmDerivatives::inverse_dynamics(&q, &v, &a, &loads);
@@ -519,56 +538,36 @@ fn derivatives_with_loads_include_the_loads_and_are_the_dual_number_derivatives(
         LoadedArmDerivatives::inverse_dynamics_derivatives(&q, &v, &a, &loads);
     let (ddq_dq, ddq_dv, ddq_dl) =
         LoadedArmDerivatives::forward_dynamics_derivatives(&q, &v, &tau, &loads);
-    let seed = |x: &[f64], at: Option<usize>| -> Vec<D> {
-        x.iter()
-            .enumerate()
-            .map(|(i, &x)| {
-                if Some(i) == at {
-                    D::variable(x)
-                } else {
-                    D::constant(x)
-                }
-            })
-            .collect()
-    };
-    let three = |x: Vec<D>| -> [D; 3] { std::array::from_fn(|i| x[i]) };
-    let twelve = |x: Vec<D>| -> [D; 12] { std::array::from_fn(|i| x[i]) };
     // (which input is seeded: 0 q, 1 v, 2 loads; its element) → the ε parts of τ and q̈.
     let column = |input: usize, j: usize| {
         let (qd, vd, ld) = (
-            three(seed(&q, (input == 0).then_some(j))),
-            three(seed(&v, (input == 1).then_some(j))),
-            twelve(seed(&loads, (input == 2).then_some(j))),
+            seeded(&q, (input == 0).then_some(j)),
+            seeded(&v, (input == 1).then_some(j)),
+            seeded(&loads, (input == 2).then_some(j)),
         );
-        let (ad, taud) = (three(seed(&a, None)), three(seed(&tau, None)));
+        let (ad, taud) = (seeded(&a, None), seeded(&tau, None));
         (
             LoadedArmDerivatives::inverse_dynamics(&qd, &vd, &ad, &ld).map(|x| x.derivative),
             LoadedArmDerivatives::forward_dynamics(&qd, &vd, &taud, &ld).map(|x| x.derivative),
         )
     };
-    let check = |got: f64, expected: f64, what: &str| {
-        assert!(
-            (got - expected).abs() <= 1e-12 * (1.0 + expected.abs()),
-            "{what}: generated {got}, dual numbers {expected}"
-        );
-    };
     for row in 0..3 {
         for j in 0..3 {
             let (by_q, acc_q) = column(0, j);
             let (by_v, acc_v) = column(1, j);
-            check(dtau_dq[row][j], by_q[row], &format!("∂τ/∂q[{row}][{j}]"));
-            check(dtau_dv[row][j], by_v[row], &format!("∂τ/∂v[{row}][{j}]"));
-            check(ddq_dq[row][j], acc_q[row], &format!("∂q̈/∂q[{row}][{j}]"));
-            check(ddq_dv[row][j], acc_v[row], &format!("∂q̈/∂v[{row}][{j}]"));
+            assert_dual(dtau_dq[row][j], by_q[row], &format!("∂τ/∂q[{row}][{j}]"));
+            assert_dual(dtau_dv[row][j], by_v[row], &format!("∂τ/∂v[{row}][{j}]"));
+            assert_dual(ddq_dq[row][j], acc_q[row], &format!("∂q̈/∂q[{row}][{j}]"));
+            assert_dual(ddq_dv[row][j], acc_v[row], &format!("∂q̈/∂v[{row}][{j}]"));
         }
         for j in 0..12 {
             let (by_l, acc_l) = column(2, j);
-            check(
+            assert_dual(
                 dtau_dl[row][j],
                 by_l[row],
                 &format!("∂τ/∂loads[{row}][{j}]"),
             );
-            check(
+            assert_dual(
                 ddq_dl[row][j],
                 acc_l[row],
                 &format!("∂q̈/∂loads[{row}][{j}]"),
@@ -830,18 +829,13 @@ fn momentum_derivatives_with_loads_are_the_dual_number_derivatives() {
     let loads: [f64; 12] = std::array::from_fn(|i| ((i as f64) * 0.77 + 0.1).sin() * 3.0);
     let (dp_dq, dpdot_dq, dpdot_dv, dpdot_dl) =
         LoadedArmDerivatives::momentum_derivatives(&q, &v, &loads);
-    let dual = |x: f64, seeded: bool| {
-        if seeded {
-            D::variable(x)
-        } else {
-            D::constant(x)
-        }
-    };
     // (which input is seeded: 0 q, 1 v, 2 loads; its element) → the ε parts of p and ṗ − τ.
     let column = |input: usize, j: usize| {
-        let qd: [D; 3] = std::array::from_fn(|i| dual(q[i], input == 0 && i == j));
-        let vd: [D; 3] = std::array::from_fn(|i| dual(v[i], input == 1 && i == j));
-        let ld: [D; 12] = std::array::from_fn(|i| dual(loads[i], input == 2 && i == j));
+        let (qd, vd, ld) = (
+            seeded(&q, (input == 0).then_some(j)),
+            seeded(&v, (input == 1).then_some(j)),
+            seeded(&loads, (input == 2).then_some(j)),
+        );
         let mass = LoadedArmDerivatives::mass_matrix(&qd);
         let coriolis = LoadedArmDerivatives::coriolis_matrix(&qd, &vd);
         let bias = LoadedArmDerivatives::inverse_dynamics(&qd, &vd, &[D::constant(0.0); 3], &ld);
@@ -858,23 +852,17 @@ fn momentum_derivatives_with_loads_are_the_dual_number_derivatives() {
         });
         (p, rate)
     };
-    let check = |got: f64, expected: f64, what: &str| {
-        assert!(
-            (got - expected).abs() <= 1e-12 * (1.0 + expected.abs()),
-            "{what}: generated {got}, dual numbers {expected}"
-        );
-    };
     for row in 0..3 {
         for j in 0..3 {
             let (p_q, rate_q) = column(0, j);
             let (_, rate_v) = column(1, j);
-            check(dp_dq[row][j], p_q[row], &format!("∂p/∂q[{row}][{j}]"));
-            check(dpdot_dq[row][j], rate_q[row], &format!("∂ṗ/∂q[{row}][{j}]"));
-            check(dpdot_dv[row][j], rate_v[row], &format!("∂ṗ/∂v[{row}][{j}]"));
+            assert_dual(dp_dq[row][j], p_q[row], &format!("∂p/∂q[{row}][{j}]"));
+            assert_dual(dpdot_dq[row][j], rate_q[row], &format!("∂ṗ/∂q[{row}][{j}]"));
+            assert_dual(dpdot_dv[row][j], rate_v[row], &format!("∂ṗ/∂v[{row}][{j}]"));
         }
         for j in 0..12 {
             let (_, rate_l) = column(2, j);
-            check(
+            assert_dual(
                 dpdot_dl[row][j],
                 rate_l[row],
                 &format!("∂ṗ/∂loads[{row}][{j}]"),
