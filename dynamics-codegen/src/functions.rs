@@ -686,7 +686,7 @@ fn cheapest_inverse_dynamics_jacobians(model: &Model) -> (Graph, Output, Velocit
 
 fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
     // ∂τ/∂q̇ by forward mode or as 2 C + diag(b), ∂τ/∂q by forward mode or the analytical
-    // recursion: whichever costs fewer operations.
+    // recursion: whichever costs fewer operations, the recursion by a twentieth.
     let (graph, output, velocity) = cheapest_inverse_dynamics_jacobians(model);
     let how = match velocity {
         VelocityColumns::ForwardMode => {
