@@ -159,10 +159,11 @@ impl Output {
     }
 }
 
-/// The block that solves an [`Output::Solved`]: the factor, the pivots and the right-hand
-/// sides bound to arrays, then `tree_ldlt::solve_columns` on the right-hand sides, those of
-/// one width together. Inside a kernel (`in_kernel`) it runs in the kernel's copy (`WIDE`);
-/// outside, in the copy `T::run_kernel` chooses.
+/// The block that solves an [`Output::Solved`]: the factor and the pivots bound to arrays,
+/// the right-hand sides to the tuple the block returns, then `tree_ldlt::solve_columns` on
+/// that tuple's matrices in place, those of one width together. Inside a kernel
+/// (`in_kernel`) it runs in the kernel's copy (`WIDE`); outside, in the copy
+/// `T::run_kernel` chooses.
 fn tree_solve_expr(s: &TreeSolve, in_kernel: bool) -> TokenStream {
     let runtime = crate::runtime_path();
     let n = Literal::usize_unsuffixed(s.parents.len());
@@ -176,23 +177,29 @@ fn tree_solve_expr(s: &TreeSolve, in_kernel: bool) -> TokenStream {
     });
     let factor = s.factor.iter().map(|&x| var(x));
     let pivots = s.inverse_pivot.iter().map(|&x| var(x));
+    let rhs: Vec<TokenStream> = s
+        .rhs
+        .iter()
+        .map(|b| Output::Matrix(b.clone()).expr())
+        .collect();
     let groups = s.width_groups();
-    let solved: Vec<Ident> = (0..s.rhs.len()).map(|k| format_ident!("x_{}", k)).collect();
-    let solves =
-        |wide: TokenStream| {
-            let calls = groups.iter().map(|(width, members)| {
-            let rhs = members.iter().map(|&k| Output::Matrix(s.rhs[k].clone()).expr());
-            let names = members.iter().map(|&k| &solved[k]);
+    let solves = |wide: TokenStream| {
+        let calls = groups.iter().map(|(width, members)| {
+            let solved = members.iter().map(|&k| syn::Index::from(k));
             let c = Literal::usize_unsuffixed(*width);
             let k = Literal::usize_unsuffixed(members.len());
             quote! {
-                let [#(#names),*] = #runtime::tree_ldlt::solve_columns::<T, #wide, #n, #p, #c, #k>(
-                    &TREE, &factor, &inverse_pivot, [#(#rhs),*],
+                #runtime::tree_ldlt::solve_columns::<T, #wide, #n, #p, #c, #k>(
+                    &TREE, &factor, &inverse_pivot, [#(&mut solved.#solved),*],
                 );
             }
         });
-            quote!(#(#calls)* (#(#solved,)*))
-        };
+        quote! {
+            let mut solved = (#(#rhs,)*);
+            #(#calls)*
+            solved
+        }
+    };
     let run = if in_kernel {
         solves(quote!(WIDE))
     } else {
