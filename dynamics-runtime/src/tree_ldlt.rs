@@ -113,7 +113,7 @@ impl<const N: usize, const P: usize> CoordinateTree<N, P> {
 /// one straight-line tree-sparse solve of it; in the `WIDE` copy of a generated function
 /// the products are fused into their differences. In place, so that generated code solves
 /// in the value it returns: taking and returning the matrices by value cost the
-/// quadruped's ∂q̈ two extra copies of its 5 kB of columns (3 to 4 % of its time).
+/// quadruped's ∂q̈ two extra copies of its 5 kB of columns (2 to 5 % of its time).
 #[inline(always)]
 pub fn solve_columns<
     T: Scalar,
