@@ -480,6 +480,26 @@ mod tests {
                 }
                 None => assert!(!crate::isa::wide()),
             }
+            // The lanes' batch: N groups of four angles, the angles taken in turn.
+            #[cfg(all(target_arch = "x86_64", feature = "std"))]
+            {
+                let groups: [[f64; 4]; N] =
+                    std::array::from_fn(|k| std::array::from_fn(|l| all[(k + 3 * l) % 10]));
+                match super::avx2::sin_cos_groups(&groups) {
+                    Some((s, c)) => {
+                        for (k, group) in groups.iter().enumerate() {
+                            for (l, &angle) in group.iter().enumerate() {
+                                assert_eq!(
+                                    bits((s[k][l], c[k][l])),
+                                    bits(super::sin_cos_mul_add(angle)),
+                                    "AVX2 groups, angle {l} of group {k} of {N}"
+                                );
+                            }
+                        }
+                    }
+                    None => assert!(!crate::isa::wide()),
+                }
+            }
         }
         let x = [
             -3.0,

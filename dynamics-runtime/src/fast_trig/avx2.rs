@@ -48,6 +48,29 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> Option<([f64; N], [f64; N]
     Some((sin, cos))
 }
 
+/// N groups of four angles (or of their sines or cosines).
+pub type Groups<const N: usize> = [[f64; 4]; N];
+
+/// Sines and cosines of N groups of four angles, one AVX register per group (the lanes
+/// of [`crate::F64x4`]): each lane bit for bit [`super::sin_cos_mul_add`], as in
+/// [`sin_cos_array`], without moving any angle between groups. `None` when this CPU lacks
+/// AVX2 or FMA (or [`crate::isa`] is pinned to the baseline).
+#[inline(always)]
+#[must_use]
+pub fn sin_cos_groups<const N: usize>(x: &Groups<N>) -> Option<(Groups<N>, Groups<N>)> {
+    if !crate::isa::wide() {
+        return None;
+    }
+    let mut sin = [[0.0; 4]; N];
+    let mut cos = [[0.0; 4]; N];
+    for (k, group) in x.iter().enumerate() {
+        // SAFETY: as in `sin_cos_array`: `crate::isa::wide()` returned true, which it does
+        // only after std's `is_x86_feature_detected!` found AVX2 and FMA on this CPU.
+        (sin[k], cos[k]) = unsafe { sin_cos_x4(*group) };
+    }
+    Some((sin, cos))
+}
+
 /// The four lanes of `x`, step by step as `super::sin_cos_impl::<f64, true>`.
 ///
 /// # Safety

@@ -227,9 +227,17 @@ impl Scalar for F64x4 {
             <f64 as Scalar>::mul_add_for::<WIDE>,
         ))
     }
-    /// `f64`'s batch on each lane's N angles.
+    /// `f64`'s batch on each lane's N angles: in the wide copy one AVX register per
+    /// `F64x4` (four angles, one of each lane), bit for bit what `f64`'s wide batch gives
+    /// each angle; in the baseline copy `f64`'s batch of each lane's angles in turn.
     #[inline(always)]
     fn sin_cos_array_for<const WIDE: bool, const N: usize>(x: [Self; N]) -> ([Self; N], [Self; N]) {
+        #[cfg(all(target_arch = "x86_64", feature = "std"))]
+        if WIDE {
+            if let Some((sin, cos)) = fast_trig::avx2::sin_cos_groups(&x.map(|v| v.0)) {
+                return (sin.map(Self), cos.map(Self));
+            }
+        }
         let mut sin = [Self::zero(); N];
         let mut cos = [Self::zero(); N];
         for lane in 0..4 {
