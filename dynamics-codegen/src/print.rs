@@ -34,11 +34,12 @@
 //!   evaluates the angles two per SSE2 instruction, or four per AVX one in the wide copy;
 //!   a scalar type without such a routine gets one `sin_cos` each.
 //! - A product that only one sum or difference uses is written into it:
-//!   `let vN = T::mul_add_for::<WIDE>(vA, vB, vC);` for `vA·vB + vC` (with `-vA` or `-vC`
-//!   for the two differences). In the baseline copy (`WIDE = false`) it is
-//!   `Scalar::mul_add`: `a·b + c` with two roundings, bit for bit the separate operations,
-//!   unless the build targets a CPU with fused multiply-add (`-C target-cpu=native`); in
-//!   the wide copy of `f32`/`f64` it is one FMA instruction, one rounding.
+//!   `let vN = isa.mul_add(vA, vB, vC);` for `vA·vB + vC` (with `-vA` or `-vC` for the
+//!   two differences), `isa` the kernel's copy (`dynamics_runtime::isa::Isa<WIDE>`, below).
+//!   In the baseline copy it is `Scalar::mul_add`: `a·b + c` with two roundings, bit for
+//!   bit the separate operations, unless the build targets a CPU with fused multiply-add
+//!   (`-C target-cpu=native`); in the wide copy of `f32`/`f64` it is one FMA instruction,
+//!   one rounding, and of `F64x4` one AVX FMA instruction for the four lanes.
 //! - An argument the function does not read is named with a leading underscore.
 //! - No allocation, no branch on data, no panic.
 //!
@@ -46,28 +47,35 @@
 //!
 //! The statements above are the body of a nested `#[inline(always)]` function
 //! `kernel<T, const WIDE: bool>`, and the emitted function hands both instantiations to
-//! the scalar type:
+//! the scalar type, which calls one with its copy's `Isa` value:
 //!
 //! ```text
 //! pub fn mass_matrix<T: Scalar>(q: &[T; 6]) -> [[T; 6]; 6] {
 //!     #[inline(always)]
-//!     fn kernel<T: Scalar, const WIDE: bool>(q: &[T; 6]) -> [[T; 6]; 6] { … }
+//!     fn kernel<T: Scalar, const WIDE: bool>(
+//!         isa: ::dynamics_runtime::isa::Isa<WIDE>,
+//!         q: &[T; 6],
+//!     ) -> [[T; 6]; 6] { … }
 //!     T::run_kernel(
 //!         #[inline(always)]
-//!         || kernel::<T, true>(q),
+//!         |isa| kernel::<T, true>(isa, q),
 //!         #[inline(always)]
-//!         || kernel::<T, false>(q),
+//!         |isa| kernel::<T, false>(isa, q),
 //!     )
 //! }
 //! ```
 //!
-//! For `f32` and `f64`, `run_kernel` (`dynamics_runtime::isa`) runs the `WIDE` copy
-//! compiled for AVX2 and FMA when the CPU has them (one relaxed load and a branch that
-//! never changes), the baseline copy otherwise; other scalar types run the baseline copy
-//! and never instantiate the other. A function with fewer than [`MIN_DISPATCHED_OPS`]
-//! operations and at most one angle's sine and cosine is emitted as the baseline body
-//! alone, after `const WIDE: bool = false;` if the body reads it: the choice would cost
-//! more than it saves. So is every function of a spec with [`FunctionSpec::dispatch`] off
+//! For `f32`, `f64` and the default build's `F64x4`, `run_kernel` (`dynamics_runtime::isa`)
+//! runs the `WIDE` copy compiled for AVX2 and FMA when the CPU has them (one relaxed load
+//! and a branch that never changes), the baseline copy otherwise; other scalar types run
+//! the baseline copy and never instantiate the other. Only the runtime can make the wide
+//! copy's `Isa<true>`, after detecting the features, so holding one proves the CPU has
+//! them: that is what lets `F64x4` fuse its products in one AVX instruction with no check
+//! per operation and no `unsafe` in generated code (`_isa` when the kernel has no fused
+//! product). A function with fewer than [`MIN_DISPATCHED_OPS`] operations and at most one
+//! angle's sine and cosine is emitted as the baseline body alone, after
+//! `const WIDE: bool = false;` and `let isa = ::dynamics_runtime::isa::Isa::BASELINE;` if
+//! the body reads them: the choice would cost more than it saves. So is every function of a spec with [`FunctionSpec::dispatch`] off
 //! (a mechanism declared with `isa: baseline;`), its pieces then `#[inline(never)]`
 //! functions called in turn.
 //!
@@ -207,9 +215,9 @@ fn tree_solve_expr(s: &TreeSolve, in_kernel: bool) -> TokenStream {
         quote! {
             T::run_kernel(
                 #[inline(always)]
-                || { #wide },
+                |_| { #wide },
                 #[inline(always)]
-                || { #narrow },
+                |_| { #narrow },
             )
         }
     };
@@ -260,7 +268,8 @@ pub(crate) fn function(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> Token
     } else if !spec.dispatch || !worth_dispatching(&count) {
         plan.baseline_body(&ops, 0, &spec.output)
     } else {
-        let (kernel_params, args) = array_params(&plan.pieces[0].arrays, spec);
+        let (mut kernel_params, args) = array_params(&plan.pieces[0].arrays, spec);
+        kernel_params.insert(0, plan.isa_param(0));
         let body = plan.piece_body(&ops, 0, &spec.output);
         quote! {
             #[inline(always)]
@@ -269,9 +278,9 @@ pub(crate) fn function(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> Token
             }
             T::run_kernel(
                 #[inline(always)]
-                || kernel::<T, true>(#(#args),*),
+                |isa| kernel::<T, true>(isa #(, #args)*),
                 #[inline(always)]
-                || kernel::<T, false>(#(#args),*),
+                |isa| kernel::<T, false>(isa #(, #args)*),
             )
         }
     };
@@ -429,21 +438,47 @@ impl Plan {
     }
 
     /// [`Plan::piece_body`] as the baseline copy alone: after `const WIDE: bool = false;`
-    /// when a fused product or a sine-cosine batch reads it.
+    /// when a sine-cosine batch or a solve loop reads it, and after
+    /// `let isa = dynamics_runtime::isa::Isa::BASELINE;` when a fused product does.
     fn baseline_body(&self, ops: &[Op], p: usize, output: &Output) -> TokenStream {
         let body = self.piece_body(ops, p, output);
         let solves_here = self.returns_output(p) && matches!(output, Output::Solved(_));
         let reads_wide = solves_here
-            || self.pieces[p].steps.iter().any(|s| match s {
-                Step::Batch(_) => true,
-                Step::One(n) => self.fused.contains_key(n),
-                Step::SinCos { .. } => false,
-            });
-        if reads_wide {
-            quote!(const WIDE: bool = false; #body)
+            || self.pieces[p]
+                .steps
+                .iter()
+                .any(|s| matches!(s, Step::Batch(_)));
+        let runtime = crate::runtime_path();
+        let wide = reads_wide.then(|| {
+            quote!(
+                const WIDE: bool = false;
+            )
+        });
+        let isa = self
+            .fuses(p)
+            .then(|| quote!(let isa = #runtime::isa::Isa::BASELINE;));
+        quote!(#wide #isa #body)
+    }
+
+    /// Whether piece `p` has a fused product, the one use of its kernel's
+    /// `dynamics_runtime::isa::Isa` value.
+    fn fuses(&self, p: usize) -> bool {
+        self.pieces[p]
+            .steps
+            .iter()
+            .any(|s| matches!(s, Step::One(n) if self.fused.contains_key(n)))
+    }
+
+    /// The first parameter of piece `p`'s kernel: its copy's `dynamics_runtime::isa::Isa`
+    /// value, `_isa` when the piece has no fused product to hand it to.
+    fn isa_param(&self, p: usize) -> TokenStream {
+        let runtime = crate::runtime_path();
+        let name = if self.fuses(p) {
+            format_ident!("isa")
         } else {
-            body
-        }
+            format_ident!("_isa")
+        };
+        quote!(#name: #runtime::isa::Isa<WIDE>)
     }
 
     /// The body of a split function: the pieces as nested kernels, then their chain, each
@@ -468,6 +503,7 @@ impl Plan {
             let doc = format!(" Piece {} of {n}.", p + 1);
             let run = if spec.dispatch {
                 let body = self.piece_body(ops, p, &spec.output);
+                params.insert(0, self.isa_param(p));
                 fns.push(quote! {
                     #[doc = #doc]
                     #[inline(always)]
@@ -478,9 +514,9 @@ impl Plan {
                 quote! {
                     T::run_piece(
                         #[inline(always)]
-                        || #part::<T, true>(#(#args),*),
+                        |isa| #part::<T, true>(isa #(, #args)*),
                         #[inline(always)]
-                        || #part::<T, false>(#(#args),*),
+                        |isa| #part::<T, false>(isa #(, #args)*),
                     )
                 }
             } else {
@@ -564,7 +600,7 @@ fn let_step(step: &Step, ops: &[Op], fused: &HashMap<Node, Fused>) -> TokenStrea
                 } else {
                     quote!(#c)
                 };
-                quote!(let #v = T::mul_add_for::<WIDE>(#x, #y, #c);)
+                quote!(let #v = isa.mul_add(#x, #y, #c);)
             }
             None => let_node(*n, ops[n.index()]),
         },
@@ -743,13 +779,13 @@ mod tests {
         let spec = spec("f", &[(Array::Q, 3)], output);
         let text = pretty(emit_function(&g, &spec));
         for line in [
-            "T::mul_add_for::<WIDE>(v0, v1, v2)",
-            "T::mul_add_for::<WIDE>(v0, v2, -v1)",
-            "T::mul_add_for::<WIDE>(-v1, v2, v0)",
+            "isa.mul_add(v0, v1, v2)",
+            "isa.mul_add(v0, v2, -v1)",
+            "isa.mul_add(-v1, v2, v0)",
         ] {
             assert!(text.contains(line), "{line} missing in\n{text}");
         }
-        assert_eq!(text.matches("T::mul_add").count(), 3, "{text}");
+        assert_eq!(text.matches("mul_add").count(), 3, "{text}");
         assert!(text.contains("v2 * v2"), "{text}");
     }
 
@@ -788,7 +824,7 @@ mod tests {
 )]
 #[must_use]
 pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) -> [T; 4] {
-    const WIDE: bool = false;
+    let isa = ::dynamics_runtime::isa::Isa::BASELINE;
     let v0 = q[0];
     let v1 = v[0];
     let v2 = a[0];
@@ -798,7 +834,7 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
     let (v3, v4) = T::sin_cos(v0);
     let v12 = v1 * v4;
     let v9 = v3 * v8;
-    let v11 = T::mul_add_for::<WIDE>(v2, v5, -v9);
+    let v11 = isa.mul_add(v2, v5, -v9);
     [v11, v12, v0, v13]
 }
 ";
@@ -863,10 +899,14 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
             .skip_while(|l| !l.starts_with("pub fn"))
             .collect();
         assert_eq!(
-            body[1..13],
+            body[1..17],
             [
                 "    #[inline(always)]",
-                "    fn kernel<T: Scalar, const WIDE: bool>(q: &[T; 3], v: &[T; 1]) -> [T; 5] {",
+                "    fn kernel<T: Scalar, const WIDE: bool>(",
+                "        _isa: ::dynamics_runtime::isa::Isa<WIDE>,",
+                "        q: &[T; 3],",
+                "        v: &[T; 1],",
+                "    ) -> [T; 5] {",
                 "        let v0 = v[0];",
                 "        let v1 = q[0];",
                 "        let v2 = q[1];",
@@ -882,8 +922,8 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
         );
         // Three angles: worth the AVX2 + FMA copy and the run-time choice.
         assert!(
-            text.contains("|| kernel::<T, true>(q, v),")
-                && text.contains("|| kernel::<T, false>(q, v),"),
+            text.contains("|isa| kernel::<T, true>(isa, q, v),")
+                && text.contains("|isa| kernel::<T, false>(isa, q, v),"),
             "{text}"
         );
         assert!(
@@ -1074,10 +1114,16 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
         assert_eq!(text.matches("T::run_piece(").count(), pieces, "{text}");
         assert!(text.contains("let [v"), "later pieces unpack their carry");
         assert!(text.contains("let carry_1 = T::run_piece("), "{text}");
-        assert!(text.contains("|| part_1::<T, true>(q, v),"), "{text}");
-        assert!(text.contains("|| part_1::<T, false>(q, v),"), "{text}");
+        assert!(
+            text.contains("|isa| part_1::<T, true>(isa, q, v),"),
+            "{text}"
+        );
+        assert!(
+            text.contains("|isa| part_1::<T, false>(isa, q, v),"),
+            "{text}"
+        );
         assert!(text.contains(&format!(
-            "|| part_{pieces}::<T, false>(v, &carry_{}),",
+            "|isa| part_{pieces}::<T, false>(isa, v, &carry_{}),",
             pieces - 1
         )));
         syn::parse_str::<syn::File>(&text).expect("pretty text parses again");
@@ -1217,13 +1263,27 @@ mod rt {
         ) -> ([Self; N], [Self; N]) {
             Self::sin_cos_array(x)
         }
+        fn mul_add_on<const WIDE: bool>(
+            self,
+            a: Self,
+            b: Self,
+            _isa: crate::dynamics_runtime::isa::Isa<WIDE>,
+        ) -> Self {
+            self.mul_add_for::<WIDE>(a, b)
+        }
         // The stub runs the `WIDE = true` copies, so that both instantiations compile and
         // one of them runs.
-        fn run_kernel<R>(wide: impl FnOnce() -> R, _narrow: impl FnOnce() -> R) -> R {
-            wide()
+        fn run_kernel<R>(
+            wide: impl FnOnce(crate::dynamics_runtime::isa::Isa<true>) -> R,
+            _narrow: impl FnOnce(crate::dynamics_runtime::isa::Isa<false>) -> R,
+        ) -> R {
+            wide(crate::dynamics_runtime::isa::Isa::STUB)
         }
-        fn run_piece<R>(wide: impl FnOnce() -> R, _narrow: impl FnOnce() -> R) -> R {
-            wide()
+        fn run_piece<R>(
+            wide: impl FnOnce(crate::dynamics_runtime::isa::Isa<true>) -> R,
+            _narrow: impl FnOnce(crate::dynamics_runtime::isa::Isa<false>) -> R,
+        ) -> R {
+            wide(crate::dynamics_runtime::isa::Isa::STUB)
         }
     }
     impl Scalar for f64 {
@@ -1232,6 +1292,26 @@ mod rt {
         fn cos(self) -> Self { f64::cos(self) }
         fn sqrt(self) -> Self { f64::sqrt(self) }
         fn sin_cos(self) -> (Self, Self) { f64::sin_cos(self) }
+    }
+}
+/// `dynamics_runtime::isa::Isa` as generated code uses it (the emitted `::dynamics_runtime`
+/// paths are rewritten to `crate::dynamics_runtime`).
+#[allow(dead_code)]
+mod dynamics_runtime {
+    pub mod isa {
+        #[derive(Clone, Copy)]
+        pub struct Isa<const WIDE: bool>(());
+        impl Isa<false> {
+            pub const BASELINE: Self = Isa(());
+        }
+        impl Isa<true> {
+            pub const STUB: Self = Isa(());
+        }
+        impl<const WIDE: bool> Isa<WIDE> {
+            pub fn mul_add<T: crate::rt::Scalar>(self, a: T, b: T, c: T) -> T {
+                a.mul_add_on(b, c, self)
+            }
+        }
     }
 }
 ";
@@ -1303,7 +1383,9 @@ mod rt {
         ] {
             let mut s = s.clone();
             s.scalar_trait = syn::parse_quote!(crate::rt::Scalar);
-            program += &emit_function(&g, &s).to_string();
+            program += &emit_function(&g, &s)
+                .to_string()
+                .replace(":: dynamics_runtime ::", "crate :: dynamics_runtime ::");
             program += "\n";
         }
         let mut main = String::from("fn main() {\n");

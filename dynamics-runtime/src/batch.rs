@@ -23,10 +23,10 @@
 //! threads, in blocks of 16 packs: the same results, bit for bit.
 //!
 //! Speed (the [`lanes`](crate::lanes) module, "Speed"): in a default build an [`F64x4`]
-//! runs in the AVX2 + FMA copy where `f64` does, 1.2 to 1.45× the throughput of `f64`
-//! calls through these helpers (1.4 to 2.1× on states already in lanes: packing and
-//! unpacking take the rest); built with `-C target-cpu=native`, 2.2 to 2.9× for inverse and
-//! forward dynamics.
+//! runs in the AVX2 + FMA copy where `f64` does, 1.05 to 2.3× the throughput of `f64`
+//! calls through these helpers (1.75 to 3.0× on states already in lanes: packing and
+//! unpacking take the rest, most for an 18 × 18 mass matrix); built with
+//! `-C target-cpu=native`, 2.2 to 2.9× for inverse and forward dynamics.
 //!
 //! # Example
 //!

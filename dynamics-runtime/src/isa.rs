@@ -109,27 +109,96 @@ pub fn choose(wide: bool) -> bool {
     false
 }
 
-/// Runs a whole generated function: `wide()` when [`wide()`] says so, `narrow()` otherwise,
-/// inlined into the caller.
+/// Which copy of a generated kernel is running, as a value the kernel is handed by
+/// [`crate::Scalar::run_kernel`] (and `run_piece`) and passes to its fused products
+/// ([`Isa::mul_add`]).
+///
+/// `Isa<false>` is the baseline copy's ([`Isa::BASELINE`], anyone may make it).
+/// `Isa<true>` is the wide copy's, and only this module makes one: in `isa::run`, after
+/// [`wide()`] said yes, that is after std's run-time detection found AVX2 and FMA on this
+/// CPU. Holding an `Isa<true>` therefore proves the CPU has both, which lets a lane type
+/// ([`crate::F64x4`]) issue AVX2 + FMA instructions in the wide copy without a check per
+/// operation. It has no public constructor, no `Default`, and its field is private;
+/// copying one that exists proves nothing new. Without the `std` feature none is ever made.
+#[derive(Clone, Copy, Debug)]
+pub struct Isa<const WIDE: bool> {
+    _proof: (),
+}
+
+impl Isa<false> {
+    /// The baseline copy's value.
+    pub const BASELINE: Self = Self { _proof: () };
+}
+
+impl<const WIDE: bool> Isa<WIDE> {
+    /// `a · b + c` as this copy computes it ([`crate::Scalar::mul_add_on`]): two roundings
+    /// in the baseline copy (unless the build targets FMA), one fused instruction in the
+    /// wide copy of `f32`, `f64` and [`crate::F64x4`]. Generated code writes every product
+    /// that only one sum or difference uses this way.
+    ///
+    /// `#[inline]`, not `#[inline(always)]`: in an unoptimised build each call then keeps
+    /// its temporaries in its own frame, where always-inlined into a kernel of a thousand
+    /// products they made the frame of the quadruped's `F64x4` kernels outgrow a 2 MB
+    /// test thread. Optimised, it is inlined like any function of its size.
+    #[inline]
+    #[must_use]
+    pub fn mul_add<T: crate::Scalar>(self, a: T, b: T, c: T) -> T {
+        a.mul_add_on(b, c, self)
+    }
+
+    /// The proof that this CPU has AVX2 and FMA, when this is the wide copy's value.
+    #[cfg(all(target_arch = "x86_64", feature = "std"))]
+    #[inline(always)]
+    pub(crate) fn avx2_fma(self) -> Option<Avx2Fma> {
+        // An `Isa<true>` exists only where `run` made it (see the type's documentation).
+        WIDE.then_some(Avx2Fma { _proof: () })
+    }
+}
+
+/// Proof that this CPU has AVX2 and FMA: made only from an `Isa<true>`
+/// ([`Isa::avx2_fma`]), itself made only after the run-time detection found both. Code
+/// holding one may call AVX2 and FMA intrinsics (`crate::lanes`' `F64x4` does).
+#[cfg(all(target_arch = "x86_64", feature = "std"))]
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Avx2Fma {
+    _proof: (),
+}
+
+/// Runs a whole generated function: `wide` when [`wide()`] says so, `narrow` otherwise,
+/// each handed its copy's [`Isa`], inlined into the caller.
 #[inline(always)]
-pub(crate) fn run<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
+pub(crate) fn run<R>(wide: impl FnOnce(Isa<true>) -> R, narrow: impl FnOnce(Isa<false>) -> R) -> R {
     #[cfg(all(target_arch = "x86_64", feature = "std"))]
     if self::wide() {
+        // The only place an `Isa<true>` is made: `self::wide()` returned true, see below.
+        let proof = Isa::<true> { _proof: () };
         // SAFETY: `avx2_fma` is compiled for AVX2 and FMA, and `self::wide()` returns true
         // only when `CHOICE` holds `WIDE`, which `decide` and `choose`, the only places
         // that store it, do only after std's `is_x86_feature_detected!` found both
         // features on this CPU. `avx2_fma` requires nothing else.
-        return unsafe { avx2_fma(wide) };
+        return unsafe {
+            avx2_fma(
+                #[inline(always)]
+                || wide(proof),
+            )
+        };
     }
     let _ = wide;
-    narrow()
+    narrow(Isa::BASELINE)
 }
 
 /// Runs one piece of a split function like [`run`], but keeps the baseline copy out of
 /// line too, so that the pieces stay separate functions either way.
 #[inline(always)]
-pub(crate) fn run_piece<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
-    run(wide, || out_of_line(narrow))
+pub(crate) fn run_piece<R>(
+    wide: impl FnOnce(Isa<true>) -> R,
+    narrow: impl FnOnce(Isa<false>) -> R,
+) -> R {
+    run(
+        wide,
+        #[inline(always)]
+        |isa| out_of_line(|| narrow(isa)),
+    )
 }
 
 /// `f()` compiled for AVX2 and FMA: the closures the generated code passes are
@@ -159,15 +228,15 @@ mod tests {
         let pinned = std::env::var_os("DYNAMICS_ISA").is_some_and(|v| v == "baseline");
         let automatic = !pinned && super::cpu_has_avx2_fma();
         assert_eq!(super::wide(), automatic);
-        assert_eq!(super::run(|| 1, || 2) == 1, automatic);
-        assert_eq!(super::run_piece(|| 1, || 2) == 1, automatic);
+        assert_eq!(super::run(|_| 1, |_| 2) == 1, automatic);
+        assert_eq!(super::run_piece(|_| 1, |_| 2) == 1, automatic);
 
         assert!(!super::choose(false));
-        assert_eq!(super::run(|| 1, || 2), 2);
-        assert_eq!(super::run_piece(|| 1, || 2), 2);
+        assert_eq!(super::run(|_| 1, |_| 2), 2);
+        assert_eq!(super::run_piece(|_| 1, |_| 2), 2);
         let granted = super::choose(true);
         assert_eq!(granted, super::cpu_has_avx2_fma());
-        assert_eq!(super::run(|| 1, || 2) == 1, granted);
+        assert_eq!(super::run(|_| 1, |_| 2) == 1, granted);
         super::choose(automatic);
     }
 }
@@ -178,8 +247,8 @@ mod tests_without_std {
     #[test]
     fn the_baseline_copy_always_runs() {
         assert!(!super::wide());
-        assert_eq!(super::run(|| 1, || 2), 2);
-        assert_eq!(super::run_piece(|| 1, || 2), 2);
+        assert_eq!(super::run(|_| 1, |_| 2), 2);
+        assert_eq!(super::run_piece(|_| 1, |_| 2), 2);
         assert!(!super::choose(true));
         assert!(!super::wide());
     }

@@ -33,7 +33,10 @@
 //! [`F64x4`] in a build without AVX (`lanes/dispatched.rs`) is four `f64` in an array, each
 //! operation written lane by lane, every generated kernel run in the copy `f64` runs: the
 //! compiler turns each operation's lanes into one instruction, one AVX register in the
-//! AVX2 + FMA copy, two SSE2 registers in the baseline one. [`F32x8`], and [`F64x4`] in a
+//! AVX2 + FMA copy, two SSE2 registers in the baseline one. Two things are written for AVX
+//! instead of left to the compiler: the fused products of the wide copy (one `vfmadd`,
+//! sound because the kernel holds the `Isa<true>` that only [`crate::isa`] makes, after
+//! detecting AVX2 and FMA) and the sines and cosines (one AVX register per [`F64x4`]). [`F32x8`], and [`F64x4`] in a
 //! build with AVX (`-C target-cpu=native` on an AVX CPU), are `wide::f32x8` and
 //! `wide::f64x4` in a newtype (`lanes/wide_backed.rs`). `wide` was already in the
 //! dependency graph (nalgebra → simba → wide 1.7, the version locked), is maintained, and
@@ -49,12 +52,11 @@
 //! # Speed (BENCHMARKS.md, "Many states per call")
 //!
 //! In the default build, on states already in lanes, [`F64x4`] evaluates the UR5's inverse
-//! dynamics 1.8× and the 18-dof quadruped's 2.1× faster per state than the `f64` call,
-//! their mass matrices 1.5× and 1.4×, their forward dynamics 1.7×; through the batch
-//! helpers, whose packing and unpacking take the rest, 1.2 to 1.45×. `wide`'s [`F64x4`]
-//! (the previous backing) gained 1.1 to 1.25× on the UR5 and nothing on the quadruped.
-//! Built with `-C target-cpu=native` (AVX), 2.2 to 2.9× for inverse and forward dynamics,
-//! 1.4× for the mass matrices. [`F32x8`] stays on `wide` (see "Backing").
+//! dynamics 2.5× and the 18-dof quadruped's 2.4× faster per state than the `f64` call,
+//! their forward dynamics 3.0× and 2.95×, their mass matrices 2.1× and 1.75×; through the
+//! batch helpers, whose packing and unpacking take the rest, 1.05 to 2.3×. Built with
+//! `-C target-cpu=native` (AVX), 2.2 to 2.9× for inverse and forward dynamics, 1.4× for the
+//! mass matrices. [`F32x8`] stays on `wide` (see "Backing").
 
 use crate::Scalar;
 

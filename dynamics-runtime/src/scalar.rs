@@ -87,6 +87,17 @@ pub trait Scalar:
         self.mul_add(a, b)
     }
     #[doc(hidden)]
+    /// `self · a + b` in the copy of a generated kernel that `isa` stands for
+    /// ([`crate::isa::Isa::mul_add`], which generated code calls): the default is
+    /// [`Scalar::mul_add_for`]; [`crate::F64x4`] uses the proof an `Isa<true>` carries to
+    /// fuse its four lanes in one AVX instruction.
+    #[inline(always)]
+    #[must_use]
+    fn mul_add_on<const WIDE: bool>(self, a: Self, b: Self, isa: crate::isa::Isa<WIDE>) -> Self {
+        let _ = isa;
+        self.mul_add_for::<WIDE>(a, b)
+    }
+    #[doc(hidden)]
     /// [`Scalar::sin_cos_array`] in the `WIDE` copy of a generated kernel: for `f64` the
     /// wide copy takes four angles per AVX register with fused Estrin steps
     /// ([`crate::fast_trig::avx2::sin_cos_array`]). The default is `sin_cos_array` in both.
@@ -96,21 +107,27 @@ pub trait Scalar:
     }
     #[doc(hidden)]
     /// For generated code, not for users (hidden from the docs): runs a whole generated
-    /// function, `wide` (its `WIDE = true` kernel) or `narrow`. `f32`
-    /// and `f64` choose at run time with [`crate::isa::run`]; the default runs `narrow`, so
-    /// other types never instantiate the wide kernel.
+    /// function, `wide` (its `WIDE = true` kernel) or `narrow`, handing it its copy's
+    /// [`crate::isa::Isa`]. `f32` and `f64` choose at run time with [`crate::isa::run`];
+    /// the default runs `narrow`, so other types never instantiate the wide kernel.
     #[inline(always)]
-    fn run_kernel<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
+    fn run_kernel<R>(
+        wide: impl FnOnce(crate::isa::Isa<true>) -> R,
+        narrow: impl FnOnce(crate::isa::Isa<false>) -> R,
+    ) -> R {
         let _ = wide;
-        narrow()
+        narrow(crate::isa::Isa::BASELINE)
     }
     #[doc(hidden)]
     /// Runs one piece of a split generated function like [`Scalar::run_kernel`], each copy
     /// out of line ([`crate::isa::run_piece`]), so that the pieces stay separate functions.
     #[inline(always)]
-    fn run_piece<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
+    fn run_piece<R>(
+        wide: impl FnOnce(crate::isa::Isa<true>) -> R,
+        narrow: impl FnOnce(crate::isa::Isa<false>) -> R,
+    ) -> R {
         let _ = wide;
-        crate::isa::out_of_line(narrow)
+        crate::isa::out_of_line(|| narrow(crate::isa::Isa::BASELINE))
     }
 }
 
@@ -189,11 +206,17 @@ macro_rules! impl_float_scalar {
                 }
             }
             #[inline(always)]
-            fn run_kernel<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
+            fn run_kernel<R>(
+                wide: impl FnOnce(crate::isa::Isa<true>) -> R,
+                narrow: impl FnOnce(crate::isa::Isa<false>) -> R,
+            ) -> R {
                 crate::isa::run(wide, narrow)
             }
             #[inline(always)]
-            fn run_piece<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
+            fn run_piece<R>(
+                wide: impl FnOnce(crate::isa::Isa<true>) -> R,
+                narrow: impl FnOnce(crate::isa::Isa<false>) -> R,
+            ) -> R {
                 crate::isa::run_piece(wide, narrow)
             }
             $($($extra)*)?

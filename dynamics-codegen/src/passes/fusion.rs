@@ -1,5 +1,5 @@
 //! The fusion pass: a product that only one sum or difference uses is folded into it as a
-//! multiply-add ([`fusions`]); the printer writes `T::mul_add_for::<WIDE>(x, y, c)` for it.
+//! multiply-add ([`fusions`]); the printer writes `isa.mul_add(x, y, c)` for it (`isa` the kernel copy's `Isa<WIDE>`).
 
 use crate::ir::Output;
 use crate::sym::{Graph, LiveSet, Node, Op};

@@ -6,7 +6,10 @@
 //! same copy of the kernel: bit for bit the `f64` call, whichever copy
 //! ([`crate::isa`]) runs. The compiler turns the four lanes of each operation into one
 //! SIMD instruction: one AVX register in the AVX2 + FMA copy, two SSE2 registers in the
-//! baseline one. A `wide::f64x4` (the backing of the AVX build, [`super`]) cannot take
+//! baseline one. Not left to it, in the wide copy: the fused products (`mul_add_on`, one
+//! `vfmadd` with the proof the kernel's `Isa<true>` carries; four scalar ones did not come
+//! back together in long functions) and the sines and cosines (one AVX register per
+//! `F64x4`). A `wide::f64x4` (the backing of the AVX build, [`super`]) cannot take
 //! the AVX2 copy: `wide` picks SSE2 instructions when the crate is compiled, whatever
 //! function they are inlined into. (An eight-lane `f32` type built the same way was tried
 //! and not kept: [`super`], "Backing".)
@@ -17,6 +20,7 @@
 
 use super::Lanes;
 use crate::fast_trig;
+use crate::isa::Isa;
 use crate::Scalar;
 use core::fmt;
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -251,14 +255,26 @@ impl Scalar for F64x4 {
         }
         (sin, cos)
     }
+    /// In the wide copy one AVX fused multiply-add, `vfmadd` on the four lanes (the
+    /// `Isa<true>` proves the CPU has it), bit for bit `f64`'s on each lane; in the
+    /// baseline copy `f64`'s on each lane.
+    #[inline(always)]
+    fn mul_add_on<const WIDE: bool>(self, a: Self, b: Self, isa: Isa<WIDE>) -> Self {
+        #[cfg(all(target_arch = "x86_64", feature = "std"))]
+        if let Some(proof) = isa.avx2_fma() {
+            return fused(proof, self, a, b);
+        }
+        let _ = isa;
+        self.mul_add_for::<WIDE>(a, b)
+    }
     /// `f64`'s choice of copy.
     #[inline(always)]
-    fn run_kernel<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
+    fn run_kernel<R>(wide: impl FnOnce(Isa<true>) -> R, narrow: impl FnOnce(Isa<false>) -> R) -> R {
         <f64 as Scalar>::run_kernel(wide, narrow)
     }
     /// `f64`'s choice of copy.
     #[inline(always)]
-    fn run_piece<R>(wide: impl FnOnce() -> R, narrow: impl FnOnce() -> R) -> R {
+    fn run_piece<R>(wide: impl FnOnce(Isa<true>) -> R, narrow: impl FnOnce(Isa<false>) -> R) -> R {
         <f64 as Scalar>::run_piece(wide, narrow)
     }
 }
@@ -277,5 +293,27 @@ impl Lanes for F64x4 {
     #[inline(always)]
     fn get(self, i: usize) -> Option<f64> {
         Self::get(self, i)
+    }
+}
+
+/// `a · b + c`, one rounding per lane: one `vfmadd` on one AVX register, each lane bit for
+/// bit `f64::mul_add` of its lanes. Inlined into the wide copy of a kernel (compiled for
+/// AVX2 and FMA) it is that one instruction.
+#[cfg(all(target_arch = "x86_64", feature = "std"))]
+#[allow(unsafe_code)] // the intrinsic and two transmutes; proofs below
+#[inline(always)]
+fn fused(proof: crate::isa::Avx2Fma, a: F64x4, b: F64x4, c: F64x4) -> F64x4 {
+    use core::arch::x86_64::{__m256d, _mm256_fmadd_pd};
+    let _ = proof;
+    // SAFETY: `F64x4` (`repr(C, align(32))` over `[f64; 4]`) and `__m256d` are both 32
+    // bytes with the same alignment, and every bit pattern is a valid value of either.
+    // `_mm256_fmadd_pd` needs AVX and FMA, which `proof` shows this CPU has: an
+    // `Avx2Fma` exists only after the run-time detection found both (`crate::isa`).
+    unsafe {
+        core::mem::transmute::<__m256d, F64x4>(_mm256_fmadd_pd(
+            core::mem::transmute::<F64x4, __m256d>(a),
+            core::mem::transmute::<F64x4, __m256d>(b),
+            core::mem::transmute::<F64x4, __m256d>(c),
+        ))
     }
 }

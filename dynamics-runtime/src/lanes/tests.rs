@@ -400,3 +400,39 @@ fn lanes_are_nalgebra_scalars() {
     let b = a * a;
     assert_eq!(b[(1, 0)].to_array(), [15.0, 20.0, 25.0, 30.0]);
 }
+
+/// A fused product in either copy of a kernel (`Isa::mul_add`, as generated code writes
+/// it): each lane of an `F64x4` is bit for bit `f64`'s in the same copy, fused (one
+/// rounding) in the wide one. The copy is whichever `run_kernel` chooses here; both sides
+/// are computed inside the same closure, so a test switching the choice cannot split them.
+#[test]
+fn f64x4_fused_products_are_f64s_lane_by_lane_in_the_copy_that_runs() {
+    // 1 + 2⁻³⁰ squared minus its rounded square: zero in two roundings, 2⁻⁶⁰ in one.
+    let x = 1.0 + f64::EPSILON.sqrt() / 2.0;
+    let (a, b) = (
+        F64x4::new([x, -x, 0.5, 3.0]),
+        F64x4::new([x, x, 0.25, -7.0]),
+    );
+    let c = F64x4::new([-(x * x), x * x, 1.0, 21.0]);
+    fn run<const WIDE: bool>(
+        isa: crate::isa::Isa<WIDE>,
+        a: F64x4,
+        b: F64x4,
+        c: F64x4,
+    ) -> (bool, [f64; 4], [f64; 4]) {
+        let lanes = isa.mul_add(a, b, c).to_array();
+        let each = core::array::from_fn(|i| {
+            let lane = |v: F64x4| v.to_array()[i];
+            isa.mul_add(lane(a), lane(b), lane(c))
+        });
+        (WIDE, lanes, each)
+    }
+    let (wide, lanes, each) =
+        <F64x4 as Scalar>::run_kernel(|isa| run(isa, a, b, c), |isa| run(isa, a, b, c));
+    assert_eq!(lanes.map(f64::to_bits), each.map(f64::to_bits));
+    let exact = x.mul_add(x, -(x * x));
+    assert_ne!(exact, 0.0);
+    // The baseline copy fuses too when the build targets FMA (`Scalar::mul_add`).
+    let fused = wide || cfg!(target_feature = "fma");
+    assert_eq!(lanes[0], if fused { exact } else { 0.0 });
+}
