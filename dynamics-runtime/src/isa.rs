@@ -120,6 +120,17 @@ pub fn choose(wide: bool) -> bool {
 /// ([`crate::F64x4`]) issue AVX2 + FMA instructions in the wide copy without a check per
 /// operation. It has no public constructor, no `Default`, and its field is private;
 /// copying one that exists proves nothing new. Without the `std` feature none is ever made.
+///
+/// ```compile_fail,E0451
+/// // Outside the runtime the wide copy's value cannot be made: its field is private.
+/// let proof = dynamics_runtime::isa::Isa::<true> { _proof: () };
+/// ```
+///
+/// ```
+/// // The baseline copy's value is anyone's; its products are the scalar type's `mul_add`.
+/// use dynamics_runtime::isa::Isa;
+/// assert_eq!(Isa::BASELINE.mul_add(2.0_f64, 3.0, 1.0), 7.0);
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct Isa<const WIDE: bool> {
     _proof: (),
