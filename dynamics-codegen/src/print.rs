@@ -75,9 +75,9 @@
 //! product). A function with fewer than [`MIN_DISPATCHED_OPS`] operations and at most one
 //! angle's sine and cosine is emitted as the baseline body alone, after
 //! `const WIDE: bool = false;` and `let isa = ::dynamics_runtime::isa::Isa::BASELINE;` if
-//! the body reads them: the choice would cost more than it saves. So is every function of a spec with [`FunctionSpec::dispatch`] off
-//! (a mechanism declared with `isa: baseline;`), its pieces then `#[inline(never)]`
-//! functions called in turn.
+//! the body reads them: the choice would cost more than it saves. So is every function of
+//! a spec with [`FunctionSpec::dispatch`] off (a mechanism declared with `isa: baseline;`),
+//! its pieces then `#[inline(never)]` functions called in turn.
 //!
 
 use crate::ir::{FunctionSpec, Output, TreeSolve};

@@ -18,9 +18,11 @@
 //! ```text
 //! pub fn f<T: Scalar>(q: &[T; 7], v: &[T; 7]) -> [T; 7] {
 //!     #[inline(always)]
-//!     fn part_1<T: Scalar, const WIDE: bool>(isa: Isa<WIDE>, q: &[T; 7], v: &[T; 7]) -> [T; 40] { … }
+//!     fn part_1<T: Scalar, const WIDE: bool>(isa: Isa<WIDE>, q: &[T; 7], v: &[T; 7])
+//!         -> [T; 40] { … }
 //!     #[inline(always)]
-//!     fn part_2<T: Scalar, const WIDE: bool>(isa: Isa<WIDE>, q: &[T; 7], carry: &[T; 40]) -> [T; 35] {
+//!     fn part_2<T: Scalar, const WIDE: bool>(isa: Isa<WIDE>, q: &[T; 7], carry: &[T; 40])
+//!         -> [T; 35] {
 //!         let [v12, v17, …] = *carry;
 //!         …
 //!     }

@@ -36,9 +36,9 @@
 //! AVX2 + FMA copy, two SSE2 registers in the baseline one. Two things are written for AVX
 //! instead of left to the compiler: the fused products of the wide copy (one `vfmadd`,
 //! sound because the kernel holds the `Isa<true>` that only [`crate::isa`] makes, after
-//! detecting AVX2 and FMA) and the sines and cosines (one AVX register per [`F64x4`]). [`F32x8`], and [`F64x4`] in a
-//! build with AVX (`-C target-cpu=native` on an AVX CPU), are `wide::f32x8` and
-//! `wide::f64x4` in a newtype (`lanes/wide_backed.rs`). `wide` was already in the
+//! detecting AVX2 and FMA) and the sines and cosines (one AVX register per [`F64x4`]).
+//! [`F32x8`], and [`F64x4`] in a build with AVX (`-C target-cpu=native` on an AVX CPU),
+//! are `wide::f32x8` and `wide::f64x4` in a newtype (`lanes/wide_backed.rs`). `wide` was already in the
 //! dependency graph (nalgebra → simba → wide 1.7, the version locked), is maintained, and
 //! gives safe, lane-wise IEEE operations on SSE2, AVX, NEON and WebAssembly SIMD with a
 //! portable fallback, chosen at compile time: this module has no `unsafe`. Its cost: it

@@ -1,5 +1,6 @@
 //! The fusion pass: a product that only one sum or difference uses is folded into it as a
-//! multiply-add ([`fusions`]); the printer writes `isa.mul_add(x, y, c)` for it (`isa` the kernel copy's `Isa<WIDE>`).
+//! multiply-add ([`fusions`]); the printer writes `isa.mul_add(x, y, c)` for it (`isa` the
+//! kernel copy's `Isa<WIDE>`).
 
 use crate::ir::Output;
 use crate::sym::{Graph, LiveSet, Node, Op};
