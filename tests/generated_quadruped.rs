@@ -117,3 +117,58 @@ fn quadruped_matches_the_reference_with_foot_forces() {
         );
     }
 }
+
+/// The quadruped's M⁻¹, which the compiler finishes with a loop over the columns
+/// (`tree_ldlt::solve_lower_columns`, the cheaper way for an 18-dof free-base tree): the
+/// inverse of the reference's mass matrix, symmetric, and in `F64x4` lanes the `f64`
+/// function's values, lane by lane, bit for bit.
+#[test]
+fn quadruped_mass_matrix_inverse_inverts_the_reference_mass_matrix() {
+    use dynamics_runtime::F64x4;
+    use models::kinematics::QuadrupedKinematics;
+    let model = QuadrupedKinematics::model();
+    let mut reference = Reference::<f64>::new(&model);
+    let mut m_ref = DMatrix::zeros(NV, NV);
+    let mut rng = SplitMix(77);
+    let mut qs = Vec::new();
+    for _ in 0..20 {
+        let mut q: [f64; NQ] = std::array::from_fn(|_| rng.uniform(-1.5, 1.5));
+        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        reference.mass_matrix(&q, &mut m_ref).expect("sizes");
+        let inverse = m_ref.clone().try_inverse().expect("M is positive definite");
+        let rows: Vec<f64> = (0..NV)
+            .flat_map(|i| (0..NV).map(move |j| (i, j)))
+            .map(|(i, j)| inverse[(i, j)])
+            .collect();
+        let got = QuadrupedKinematics::mass_matrix_inverse(&q);
+        assert_close(
+            "mass_matrix_inverse",
+            got.as_flattened(),
+            &rows,
+            1e-12 * condition_number(&m_ref),
+        );
+        for i in 0..NV {
+            for j in 0..i {
+                assert_eq!(got[i][j], got[j][i], "M⁻¹ symmetric at ({i}, {j})");
+            }
+        }
+        qs.push(q);
+    }
+    for four in qs.chunks_exact(4) {
+        let lanes: [F64x4; NQ] = std::array::from_fn(|i| F64x4::from_fn(|l| four[l][i]));
+        let got = QuadrupedKinematics::mass_matrix_inverse(&lanes);
+        for (l, q) in four.iter().enumerate() {
+            let one = QuadrupedKinematics::mass_matrix_inverse(q);
+            for i in 0..NV {
+                for j in 0..NV {
+                    assert_eq!(
+                        got[i][j].get(l).map(f64::to_bits),
+                        Some(one[i][j].to_bits()),
+                        "lane {l} ({i}, {j})"
+                    );
+                }
+            }
+        }
+    }
+}

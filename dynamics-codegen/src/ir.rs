@@ -73,8 +73,9 @@ pub(crate) enum Output {
     /// `[[[T; 7]; 6]; 7]`.
     Stack(Vec<Output>),
     /// A tuple of matrices X solving M X = B by a tree-sparse factorization of M that the
-    /// graph computes along with the B's: the emitted code runs the solve as a loop over
-    /// the columns (`dynamics_runtime::tree_ldlt`), not as straight-line code.
+    /// graph computes along with the B's (the matrix itself when there is one B): the
+    /// emitted code runs the solve as a loop over the columns (`dynamics_runtime::tree_ldlt`),
+    /// not as straight-line code.
     Solved(TreeSolve),
 }
 
@@ -90,17 +91,37 @@ pub(crate) struct TreeSolve {
     pub inverse_pivot: Vec<Node>,
     /// The right-hand sides B, each nv rows of the same number of columns.
     pub rhs: Vec<Vec<Vec<Node>>>,
+    /// Which of the solve's sweeps the loop runs.
+    pub sweeps: Sweeps,
+}
+
+/// The sweeps of a [`TreeSolve`]'s loop.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Sweeps {
+    /// Lᵀ Z = B, Y = D⁻¹ Z, L X = Y: B is the right-hand side.
+    All,
+    /// M⁻¹ = L⁻¹ (D⁻¹ L⁻ᵀ): L X = B alone, B = D⁻¹ L⁻ᵀ computed by the graph, where the
+    /// zeros of L⁻ᵀ (upper triangular and tree-sparse) make it cheap in straight-line
+    /// code; then X's upper triangle mirrored onto the lower, so that X is exactly
+    /// symmetric.
+    LastOfInverse,
 }
 
 impl TreeSolve {
     /// The multiplications and the additions of the loop (no zero skipped): a multiply-add
-    /// for each column and each factor entry in either sweep, a product for each column and
-    /// pivot.
+    /// for each column and each factor entry in each sweep run, a product for each column
+    /// and pivot when the loop scales by them.
     #[must_use]
     pub fn loop_ops(&self) -> (usize, usize) {
         let columns: usize = self.rhs.iter().map(|b| b.first().map_or(0, Vec::len)).sum();
-        let sweeps = columns * 2 * self.factor.len();
-        (sweeps + columns * self.inverse_pivot.len(), sweeps)
+        let row_updates = columns * self.factor.len();
+        match self.sweeps {
+            Sweeps::All => (
+                2 * row_updates + columns * self.inverse_pivot.len(),
+                2 * row_updates,
+            ),
+            Sweeps::LastOfInverse => (row_updates, row_updates),
+        }
     }
 
     /// The right-hand sides grouped as the loop takes them, those of one width together:
@@ -121,8 +142,9 @@ impl TreeSolve {
     /// What the loop costs, in straight-line operations of about the same time: the
     /// right-hand sides of one width go through the loop together ([`Self::width_groups`]),
     /// K matrices of C columns, so each row update is ⌈C K / 4⌉ AVX2 multiply-adds and about two more
-    /// instructions; the 2 P row updates of the sweeps (P the factor's length) and the N
-    /// rows scaled by 1 / D_k cost 1.5 operations per such step, plus 480 for the call
+    /// instructions; the 2 P row updates of the sweeps (P the factor's length; P alone
+    /// for [`Sweeps::LastOfInverse`]) and the N rows scaled by 1 / D_k (not for [`Sweeps::LastOfInverse`])
+    /// cost 1.5 operations per such step, plus 480 for the call
     /// (fitted to the UR5's, the Panda's and the quadruped's forward-dynamics derivatives
     /// timed against their straight-line solves: about 70 ns plus 0.21 ns a step, at about
     /// 7 straight-line operations a nanosecond). The fit predates the solve in place, which
@@ -136,15 +158,30 @@ impl TreeSolve {
             .iter()
             .map(|(width, members)| {
                 let vectors = (width * members.len()).div_ceil(4);
-                2 * pairs * (vectors + 2) + n * vectors
+                match self.sweeps {
+                    Sweeps::All => 2 * pairs * (vectors + 2) + n * vectors,
+                    Sweeps::LastOfInverse => pairs * (vectors + 2),
+                }
             })
             .sum();
         480 + steps * 3 / 2
     }
 
+    /// What the emitted function returns, in the shape of the other outputs: a tuple of
+    /// the solutions' matrices, or the matrix itself when there is one right-hand side.
+    #[must_use]
+    pub fn returned(&self) -> Output {
+        let mut matrices: Vec<Output> = self.rhs.iter().cloned().map(Output::Matrix).collect();
+        match matrices.len() {
+            1 => matrices.swap_remove(0),
+            _ => Output::Tuple(matrices),
+        }
+    }
+
     /// The solves in `f64`, from the values of [`Output::nodes`] of the output (factor,
     /// pivots, then the right-hand sides by rows): the solutions, one matrix after the
-    /// other by rows, in the order of a straight-line solve of each column.
+    /// other by rows, in the order of a straight-line solve of each column (M⁻¹'s upper
+    /// triangle mirrored, for [`Sweeps::LastOfInverse`]).
     #[must_use]
     pub fn solve_f64(&self, values: &[f64]) -> Vec<f64> {
         let (factor, rest) = values.split_at(self.factor.len().min(values.len()));
@@ -158,13 +195,15 @@ impl TreeSolve {
         }
         let l = |k: usize, nth: usize| factor.get(row_start[k] + nth).copied().unwrap_or(0.0);
         let solve = |mut y: Vec<f64>| {
-            for k in (0..n).rev() {
-                for (nth, i) in ancestors(k).enumerate() {
-                    y[i] -= l(k, nth) * y[k];
+            if self.sweeps == Sweeps::All {
+                for k in (0..n).rev() {
+                    for (nth, i) in ancestors(k).enumerate() {
+                        y[i] -= l(k, nth) * y[k];
+                    }
                 }
-            }
-            for (x, d) in y.iter_mut().zip(pivot) {
-                *x *= d;
+                for (x, d) in y.iter_mut().zip(pivot) {
+                    *x *= d;
+                }
             }
             for k in 0..n {
                 for (nth, i) in ancestors(k).enumerate() {
@@ -182,7 +221,13 @@ impl TreeSolve {
             let columns: Vec<Vec<f64>> = (0..width)
                 .map(|c| solve((0..n).map(|r| at(r, c)).collect()))
                 .collect();
-            out.extend((0..n).flat_map(|r| columns.iter().map(move |column| column[r])));
+            // M⁻¹'s lower triangle is its upper one, mirrored.
+            let mirrored = self.sweeps == Sweeps::LastOfInverse;
+            let entry = |r: usize, c: usize| match mirrored && c < r {
+                true => columns[r][c],
+                false => columns[c][r],
+            };
+            out.extend((0..n).flat_map(|r| (0..width).map(move |c| entry(r, c))));
         }
         out
     }
@@ -227,6 +272,7 @@ impl Output {
                     .iter()
                     .map(|b| b.iter().map(|r| row(r)).collect())
                     .collect(),
+                sweeps: s.sweeps,
             }),
         }
     }

@@ -80,7 +80,7 @@
 //! its pieces then `#[inline(never)]` functions called in turn.
 //!
 
-use crate::ir::{FunctionSpec, Output, TreeSolve};
+use crate::ir::{FunctionSpec, Output, Sweeps, TreeSolve};
 use crate::passes::fusion::Fused;
 use crate::schedule::{Plan, Step};
 use crate::sym::{Array, Graph, Node, Op, OpCount};
@@ -121,10 +121,7 @@ impl Output {
                 );
                 quote!([#item; #n])
             }
-            Output::Solved(s) => {
-                let tys = s.rhs.iter().map(|b| Output::Matrix(b.clone()).ty());
-                quote!((#(#tys,)*))
-            }
+            Output::Solved(s) => s.returned().ty(),
         }
     }
 
@@ -196,16 +193,32 @@ fn tree_solve_expr(s: &TreeSolve, in_kernel: bool) -> TokenStream {
             let solved = members.iter().map(|&k| syn::Index::from(k));
             let c = Literal::usize_unsuffixed(*width);
             let k = Literal::usize_unsuffixed(members.len());
-            quote! {
-                #runtime::tree_ldlt::solve_columns::<T, #wide, #n, #p, #c, #k>(
-                    &TREE, &factor, &inverse_pivot, [#(&mut solved.#solved),*],
-                );
+            match s.sweeps {
+                Sweeps::All => quote! {
+                    #runtime::tree_ldlt::solve_columns::<T, #wide, #n, #p, #c, #k>(
+                        &TREE, &factor, &inverse_pivot, [#(&mut solved.#solved),*],
+                    );
+                },
+                Sweeps::LastOfInverse => {
+                    let mirrored = members.iter().map(|&k| syn::Index::from(k));
+                    quote! {
+                        #runtime::tree_ldlt::solve_lower_columns::<T, #wide, #n, #p, #c, #k>(
+                            &TREE, &factor, [#(&mut solved.#solved),*],
+                        );
+                        #(#runtime::tree_ldlt::mirror_upper_triangle(&mut solved.#mirrored);)*
+                    }
+                }
             }
         });
+        let returned = if s.rhs.len() == 1 {
+            quote!(solved.0)
+        } else {
+            quote!(solved)
+        };
         quote! {
             let mut solved = (#(#rhs,)*);
             #(#calls)*
-            solved
+            #returned
         }
     };
     let run = if in_kernel {
@@ -691,7 +704,12 @@ pub(crate) fn nalgebra_wrapper(spec: &FunctionSpec, nalgebra: &TokenStream) -> T
         quote!(&#ident.data.0[0])
     });
     let call = quote!(Self::#name(#(#forwarded),*));
-    let (ret, body) = match &spec.output {
+    // A solve loop returns its matrix, or a tuple of them, as the straight-line code would.
+    let returned = match &spec.output {
+        Output::Solved(s) => s.returned(),
+        other => other.clone(),
+    };
+    let (ret, body) = match &returned {
         Output::Scalar(_) => (quote!(T), call),
         Output::Vector(v) => {
             let n = Literal::usize_unsuffixed(v.len());
@@ -725,7 +743,7 @@ pub(crate) fn nalgebra_wrapper(spec: &FunctionSpec, nalgebra: &TokenStream) -> T
 #[cfg(test)]
 mod tests {
     use super::f64_literal;
-    use crate::ir::{Arg, FunctionSpec, Output, TreeSolve};
+    use crate::ir::{Arg, FunctionSpec, Output, Sweeps, TreeSolve};
     use crate::passes::{fusion, signs};
     use crate::schedule::Plan;
     use crate::sym::{Array, Graph, InputRef, Node};
@@ -1202,6 +1220,7 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
             factor: vec![xs[1]],
             inverse_pivot: vec![xs[2], xs[4]],
             rhs: vec![vec![vec![xs[0]], vec![xs[3]]]],
+            sweeps: Sweeps::All,
         });
         let mut s = spec("solved", &[(Array::Q, 8), (Array::V, 3)], solved);
         // The text without white space, where the pretty printer may break lines.

@@ -14,7 +14,9 @@
 //! held in registers and store it once. Generated code calls this for the chain rule of
 //! the forward-dynamics derivatives, ∂q̈/∂x = −M⁻¹ ∂τ/∂x, where the same factor solves
 //! 2 nv columns: a loop instead of nv straight-line solves keeps the code small enough for
-//! the instruction cache on large trees.
+//! the instruction cache on large trees. The last sweep alone ([`solve_lower_columns`])
+//! finishes M⁻¹ = L⁻¹ (D⁻¹ L⁻ᵀ) on large trees, [`mirror_upper_triangle`] making it
+//! exactly symmetric.
 //!
 //! The coordinates are numbered depth first (every coordinate after its parent, each
 //! subtree contiguous), as the generated code numbers them; [`CoordinateTree::new`] checks
@@ -143,13 +145,47 @@ pub fn solve_columns<
             }
         }
     }
-    // L X = Y, from the root: row k gathers its ancestors' final rows, the parent first.
+    // L X = Y.
+    solve_lower_columns::<T, WIDE, N, P, C, K>(tree, factor, columns);
+}
+
+/// X = L⁻¹ Y for every column of the `K` matrices Y in `columns`, in place: the last sweep
+/// of [`solve_columns`] alone, L X = Y. Generated code calls it for M⁻¹ = L⁻¹ (D⁻¹ L⁻ᵀ),
+/// where straight-line code computes D⁻¹ L⁻ᵀ cheaply from its zeros (L⁻ᵀ is upper
+/// triangular and nonzero only where the column's coordinate descends from the row's) and
+/// the loop does the dense part, the sums over common ancestors, a row of columns at a time.
+#[inline(always)]
+pub fn solve_lower_columns<
+    T: Scalar,
+    const WIDE: bool,
+    const N: usize,
+    const P: usize,
+    const C: usize,
+    const K: usize,
+>(
+    tree: &CoordinateTree<N, P>,
+    factor: &[T; P],
+    mut columns: [&mut [[T; C]; N]; K],
+) {
+    // From the root: row k gathers its ancestors' final rows, the parent first.
     let mut start = 0;
     for k in 0..N {
         let end = tree.row_end[k];
         let above = tree.ancestors.get(start..end).unwrap_or(&[]);
         gather_row::<T, WIDE, N, P, C, K>(&mut columns, k, above, factor);
         start = end;
+    }
+}
+
+/// The upper triangle of the square matrix `x` copied onto its lower one, so that a
+/// symmetric result computed row by row (M⁻¹ by [`solve_lower_columns`]) is symmetric to
+/// the bit.
+#[inline(always)]
+pub fn mirror_upper_triangle<T: Copy, const N: usize>(x: &mut [[T; N]; N]) {
+    for r in 1..N {
+        for c in 0..r {
+            x[r][c] = x[c][r];
+        }
     }
 }
 
@@ -194,7 +230,7 @@ fn gather_row<
 
 #[cfg(test)]
 mod tests {
-    use super::{solve_columns, CoordinateTree};
+    use super::{mirror_upper_triangle, solve_columns, solve_lower_columns, CoordinateTree};
 
     /// A free base's six coordinates in a chain, then two legs of two.
     const PARENTS: [Option<usize>; 10] = [
@@ -213,8 +249,8 @@ mod tests {
     /// The (coordinate, ancestor) pairs: the base's 15, each leg's 6 + 7.
     const PAIRS: usize = 15 + 2 * (6 + 7);
 
-    /// M = Lᵀ D L built densely from the factor, for checking the solve.
-    fn dense(factor: &[f64; PAIRS], d: &[f64; 10]) -> [[f64; 10]; 10] {
+    /// L, dense, from the factor.
+    fn dense_l(factor: &[f64; PAIRS]) -> [[f64; 10]; 10] {
         let mut l = [[0.0; 10]; 10];
         let mut at = 0;
         for (k, row) in l.iter_mut().enumerate() {
@@ -226,6 +262,12 @@ mod tests {
                 a = PARENTS[i];
             }
         }
+        l
+    }
+
+    /// M = Lᵀ D L built densely from the factor, for checking the solve.
+    fn dense(factor: &[f64; PAIRS], d: &[f64; 10]) -> [[f64; 10]; 10] {
+        let l = dense_l(factor);
         let mut m = [[0.0; 10]; 10];
         for (r, m_row) in m.iter_mut().enumerate() {
             for (c, x) in m_row.iter_mut().enumerate() {
@@ -271,6 +313,43 @@ mod tests {
         );
         for (a, b) in x.iter().flatten().zip(wide.iter().flatten()) {
             assert!((a - b).abs() < 1e-13);
+        }
+    }
+
+    /// M⁻¹ = L⁻¹ (D⁻¹ L⁻ᵀ) by the last sweep alone, mirrored: M times it is the identity,
+    /// and it is symmetric to the bit.
+    #[test]
+    fn the_last_sweep_finishes_the_inverse() {
+        const TREE: CoordinateTree<10, PAIRS> = CoordinateTree::new(PARENTS);
+        let factor: [f64; PAIRS] = core::array::from_fn(|k| 0.3 * (k as f64 * 0.7).sin());
+        let d: [f64; 10] = core::array::from_fn(|k| 1.0 + 0.1 * k as f64);
+        // D⁻¹ L⁻ᵀ = L M⁻¹, column j from the full solve of M x = e_j.
+        let l = dense_l(&factor);
+        let mut halfway = [[0.0; 10]; 10];
+        for j in 0..10 {
+            let mut x = [[0.0; 1]; 10];
+            x[j][0] = 1.0;
+            solve_columns::<f64, false, 10, PAIRS, 1, 1>(
+                &TREE,
+                &factor,
+                &d.map(|x| 1.0 / x),
+                [&mut x],
+            );
+            for (r, row) in halfway.iter_mut().enumerate() {
+                row[j] = (0..10).map(|c| l[r][c] * x[c][0]).sum();
+            }
+        }
+        let mut x = halfway;
+        solve_lower_columns::<f64, false, 10, PAIRS, 10, 1>(&TREE, &factor, [&mut x]);
+        mirror_upper_triangle(&mut x);
+        let m = dense(&factor, &d);
+        for r in 0..10 {
+            for c in 0..10 {
+                let mx: f64 = (0..10).map(|k| m[r][k] * x[k][c]).sum();
+                let identity = if r == c { 1.0 } else { 0.0 };
+                assert!((mx - identity).abs() < 1e-12, "({r}, {c}): {mx}");
+                assert_eq!(x[r][c].to_bits(), x[c][r].to_bits());
+            }
         }
     }
 

@@ -120,17 +120,7 @@ pub fn inverse(g: &Graph, model: &Model, mut m: Vec<Vec<Node>>) -> Vec<Vec<Node>
         |k: usize| std::iter::once(k).chain(std::iter::successors(parents[k], |&i| parents[i]));
     let n = m.len();
     let inverse_pivot = factor(g, &parents, &mut m);
-    // w[k][j] = W_kj, solving Lᵀ w = e_j from j towards the root.
-    let mut w = vec![vec![g.zero(); n]; n];
-    for j in 0..n {
-        w[j][j] = g.one();
-        let chain: Vec<usize> = with_ancestors(j).collect();
-        for &i in &chain {
-            for a in with_ancestors(i).skip(1) {
-                w[a][j] = g.sub(w[a][j], g.mul(m[i][a], w[i][j]));
-            }
-        }
-    }
+    let w = inverse_of_transposed_factor(g, &parents, &m);
     let mut out = vec![vec![g.zero(); n]; n];
     for i in 0..n {
         let own: Vec<usize> = with_ancestors(i).collect();
@@ -145,4 +135,64 @@ pub fn inverse(g: &Graph, model: &Model, mut m: Vec<Vec<Node>>) -> Vec<Vec<Node>
         }
     }
     out
+}
+
+/// M⁻¹ = L⁻¹ (D⁻¹ W) from the same factorization, for a loop to finish with L X = D⁻¹ W
+/// (`dynamics_runtime::tree_ldlt::solve_lower_columns`, SIMD across the columns): the
+/// coordinate parents, L_ki row after row (each row's entries from k's parent towards the
+/// root), 1 / D_k, and D⁻¹ W by rows, row k nonzero only on k's subtree (consumes M).
+pub fn inverse_halfway(g: &Graph, model: &Model, mut m: Vec<Vec<Node>>) -> InverseHalfway {
+    let parents = coordinate_parents(model);
+    let inverse_pivot = factor(g, &parents, &mut m);
+    let w = inverse_of_transposed_factor(g, &parents, &m);
+    let scaled = w
+        .iter()
+        .zip(&inverse_pivot)
+        .map(|(row, &d)| row.iter().map(|&x| g.mul(x, d)).collect())
+        .collect();
+    let factor = (0..m.len())
+        .flat_map(|k| std::iter::successors(parents[k], |&i| parents[i]).map(move |i| (k, i)))
+        .map(|(k, i)| m[k][i])
+        .collect();
+    InverseHalfway {
+        parents,
+        factor,
+        inverse_pivot,
+        scaled,
+    }
+}
+
+/// What [`inverse_halfway`] returns.
+pub struct InverseHalfway {
+    /// The parent coordinate of each coordinate.
+    pub parents: Vec<Option<usize>>,
+    /// L_ki, row after row, each row's entries from k's parent towards the root.
+    pub factor: Vec<Node>,
+    /// 1 / D_k.
+    pub inverse_pivot: Vec<Node>,
+    /// D⁻¹ W = D⁻¹ L⁻ᵀ, by rows.
+    pub scaled: Vec<Vec<Node>>,
+}
+
+/// W = L⁻ᵀ from the factorization in `m` (`w[k][j]` = W_kj), solving Lᵀ w = e_j for each
+/// column j from j towards the root: column j is nonzero only on j and its ancestors.
+fn inverse_of_transposed_factor(
+    g: &Graph,
+    parents: &[Option<usize>],
+    m: &[Vec<Node>],
+) -> Vec<Vec<Node>> {
+    let with_ancestors =
+        |k: usize| std::iter::once(k).chain(std::iter::successors(parents[k], |&i| parents[i]));
+    let n = m.len();
+    let mut w = vec![vec![g.zero(); n]; n];
+    for j in 0..n {
+        w[j][j] = g.one();
+        let chain: Vec<usize> = with_ancestors(j).collect();
+        for &i in &chain {
+            for a in with_ancestors(i).skip(1) {
+                w[a][j] = g.sub(w[a][j], g.mul(m[i][a], w[i][j]));
+            }
+        }
+    }
+    w
 }
