@@ -71,8 +71,9 @@
 //! the baseline copy and never instantiate the other. Only the runtime can make the wide
 //! copy's `Isa<true>`, after detecting the features, so holding one proves the CPU has
 //! them: that is what lets `F64x4` fuse its products in one AVX instruction with no check
-//! per operation and no `unsafe` in generated code (`_isa` when the kernel has no fused
-//! product). A function with fewer than [`MIN_DISPATCHED_OPS`] operations and at most one
+//! per operation and no `unsafe` in generated code (`_isa` when the kernel has neither a
+//! fused product nor a solve loop, `dynamics_runtime::tree_ldlt`, which fuses the same
+//! way). A function with fewer than [`MIN_DISPATCHED_OPS`] operations and at most one
 //! angle's sine and cosine is emitted as the baseline body alone, after
 //! `const WIDE: bool = false;` and `let isa = ::dynamics_runtime::isa::Isa::BASELINE;` if
 //! the body reads them: the choice would cost more than it saves. So is every function of
@@ -196,14 +197,14 @@ fn tree_solve_expr(s: &TreeSolve, in_kernel: bool) -> TokenStream {
             match s.sweeps {
                 Sweeps::All => quote! {
                     #runtime::tree_ldlt::solve_columns::<T, #wide, #n, #p, #c, #k>(
-                        &TREE, &factor, &inverse_pivot, [#(&mut solved.#solved),*],
+                        isa, &TREE, &factor, &inverse_pivot, [#(&mut solved.#solved),*],
                     );
                 },
                 Sweeps::LastOfInverse => {
                     let mirrored = members.iter().map(|&k| syn::Index::from(k));
                     quote! {
                         #runtime::tree_ldlt::solve_lower_columns::<T, #wide, #n, #p, #c, #k>(
-                            &TREE, &factor, [#(&mut solved.#solved),*],
+                            isa, &TREE, &factor, [#(&mut solved.#solved),*],
                         );
                         #(#runtime::tree_ldlt::mirror_upper_triangle(&mut solved.#mirrored);)*
                     }
@@ -228,9 +229,9 @@ fn tree_solve_expr(s: &TreeSolve, in_kernel: bool) -> TokenStream {
         quote! {
             T::run_kernel(
                 #[inline(always)]
-                |_| { #wide },
+                |isa| { #wide },
                 #[inline(always)]
-                |_| { #narrow },
+                |isa| { #narrow },
             )
         }
     };
@@ -282,7 +283,7 @@ pub(crate) fn function(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> Token
         plan.baseline_body(&ops, 0, &spec.output)
     } else {
         let (mut kernel_params, args) = array_params(&plan.pieces[0].arrays, spec);
-        kernel_params.insert(0, plan.isa_param(0));
+        kernel_params.insert(0, plan.isa_param(0, &spec.output));
         let body = plan.piece_body(&ops, 0, &spec.output);
         quote! {
             #[inline(always)]
@@ -452,11 +453,11 @@ impl Plan {
 
     /// [`Plan::piece_body`] as the baseline copy alone: after `const WIDE: bool = false;`
     /// when a sine-cosine batch or a solve loop reads it, and after
-    /// `let isa = dynamics_runtime::isa::Isa::BASELINE;` when a fused product does.
+    /// `let isa = dynamics_runtime::isa::Isa::BASELINE;` when a fused product or a solve
+    /// loop does.
     fn baseline_body(&self, ops: &[Op], p: usize, output: &Output) -> TokenStream {
         let body = self.piece_body(ops, p, output);
-        let solves_here = self.returns_output(p) && matches!(output, Output::Solved(_));
-        let reads_wide = solves_here
+        let reads_wide = self.solves(p, output)
             || self.pieces[p]
                 .steps
                 .iter()
@@ -468,25 +469,31 @@ impl Plan {
             )
         });
         let isa = self
-            .fuses(p)
+            .reads_isa(p, output)
             .then(|| quote!(let isa = #runtime::isa::Isa::BASELINE;));
         quote!(#wide #isa #body)
     }
 
-    /// Whether piece `p` has a fused product, the one use of its kernel's
-    /// `dynamics_runtime::isa::Isa` value.
-    fn fuses(&self, p: usize) -> bool {
-        self.pieces[p]
-            .steps
-            .iter()
-            .any(|s| matches!(s, Step::One(n) if self.fused.contains_key(n)))
+    /// Whether piece `p` hands its kernel's `dynamics_runtime::isa::Isa` value to anything:
+    /// a fused product, or the solve loop of an [`Output::Solved`] it returns.
+    fn reads_isa(&self, p: usize, output: &Output) -> bool {
+        self.solves(p, output)
+            || self.pieces[p]
+                .steps
+                .iter()
+                .any(|s| matches!(s, Step::One(n) if self.fused.contains_key(n)))
+    }
+
+    /// Whether piece `p` runs the solve loop of an [`Output::Solved`]: it returns the output.
+    fn solves(&self, p: usize, output: &Output) -> bool {
+        self.returns_output(p) && matches!(output, Output::Solved(_))
     }
 
     /// The first parameter of piece `p`'s kernel: its copy's `dynamics_runtime::isa::Isa`
-    /// value, `_isa` when the piece has no fused product to hand it to.
-    fn isa_param(&self, p: usize) -> TokenStream {
+    /// value, `_isa` when the piece has nothing to hand it to.
+    fn isa_param(&self, p: usize, output: &Output) -> TokenStream {
         let runtime = crate::runtime_path();
-        let name = if self.fuses(p) {
+        let name = if self.reads_isa(p, output) {
             format_ident!("isa")
         } else {
             format_ident!("_isa")
@@ -516,7 +523,7 @@ impl Plan {
             let doc = format!(" Piece {} of {n}.", p + 1);
             let run = if spec.dispatch {
                 let body = self.piece_body(ops, p, &spec.output);
-                params.insert(0, self.isa_param(p));
+                params.insert(0, self.isa_param(p, &spec.output));
                 fns.push(quote! {
                     #[doc = #doc]
                     #[inline(always)]
@@ -562,7 +569,12 @@ impl Plan {
         let output = match &spec.output {
             Output::Solved(_) if !spec.dispatch => {
                 let solved = spec.output.expr_in_kernel();
-                quote!({ const WIDE: bool = false; #solved })
+                let runtime = crate::runtime_path();
+                quote!({
+                    const WIDE: bool = false;
+                    let isa = #runtime::isa::Isa::BASELINE;
+                    #solved
+                })
             }
             _ => spec.output.expr(),
         };
@@ -1274,9 +1286,6 @@ mod rt {
         fn mul_add(self, a: Self, b: Self) -> Self {
             self * a + b
         }
-        fn mul_add_for<const WIDE: bool>(self, a: Self, b: Self) -> Self {
-            self.mul_add(a, b)
-        }
         fn sin_cos_array_for<const WIDE: bool, const N: usize>(
             x: [Self; N],
         ) -> ([Self; N], [Self; N]) {
@@ -1288,7 +1297,7 @@ mod rt {
             b: Self,
             _isa: crate::dynamics_runtime::isa::Isa<WIDE>,
         ) -> Self {
-            self.mul_add_for::<WIDE>(a, b)
+            self.mul_add(a, b)
         }
         // The stub runs the `WIDE = true` copies, so that both instantiations compile and
         // one of them runs.

@@ -77,25 +77,17 @@ pub trait Scalar:
         self * a + b
     }
     #[doc(hidden)]
-    /// `self · a + b` in the `WIDE` copy of a generated kernel ([`crate::isa`]): the
-    /// baseline copy (`WIDE = false`) calls [`Scalar::mul_add`]; the wide copy of `f32` and
-    /// `f64`, compiled for FMA, fuses (one instruction, one rounding). The default is
-    /// `mul_add` in both.
-    #[inline(always)]
-    #[must_use]
-    fn mul_add_for<const WIDE: bool>(self, a: Self, b: Self) -> Self {
-        self.mul_add(a, b)
-    }
-    #[doc(hidden)]
     /// `self · a + b` in the copy of a generated kernel that `isa` stands for
-    /// ([`crate::isa::Isa::mul_add`], which generated code calls): the default is
-    /// [`Scalar::mul_add_for`]; [`crate::F64x4`] uses the proof an `Isa<true>` carries to
-    /// fuse its four lanes in one AVX instruction.
+    /// ([`crate::isa::Isa::mul_add`], which generated code and the solve loops of
+    /// [`crate::tree_ldlt`] call). The default is [`Scalar::mul_add`] in both copies; the
+    /// wide copy of `f32` and `f64`, compiled for FMA, fuses (one instruction, one
+    /// rounding), and [`crate::F64x4`]'s uses the proof an `Isa<true>` carries to fuse its
+    /// four lanes in one AVX instruction.
     #[inline(always)]
     #[must_use]
     fn mul_add_on<const WIDE: bool>(self, a: Self, b: Self, isa: crate::isa::Isa<WIDE>) -> Self {
         let _ = isa;
-        self.mul_add_for::<WIDE>(a, b)
+        self.mul_add(a, b)
     }
     #[doc(hidden)]
     /// [`Scalar::sin_cos_array`] in the `WIDE` copy of a generated kernel: for `f64` the
@@ -198,7 +190,13 @@ macro_rules! impl_float_scalar {
                 }
             }
             #[inline(always)]
-            fn mul_add_for<const WIDE: bool>(self, a: Self, b: Self) -> Self {
+            fn mul_add_on<const WIDE: bool>(
+                self,
+                a: Self,
+                b: Self,
+                isa: crate::isa::Isa<WIDE>,
+            ) -> Self {
+                let _ = isa;
                 if WIDE {
                     <$t as Math>::mul_add(self, a, b)
                 } else {
@@ -247,8 +245,8 @@ mod tests {
     use super::Scalar;
 
     /// 0.1 · 10 − 1 is 0 with two roundings and 5.55e-17 with one: `mul_add` fuses only
-    /// when the build targets FMA hardware, `mul_add_for::<true>` (the AVX2 + FMA kernels')
-    /// always.
+    /// when the build targets FMA hardware, `mul_add_on` with the wide copy's `Isa` (the
+    /// AVX2 + FMA kernels') always.
     #[test]
     fn mul_add_fuses_only_when_built_for_fma() {
         let (a, b, c) = (0.1_f64, 10.0, -1.0);
@@ -266,15 +264,20 @@ mod tests {
             <f64 as Scalar>::mul_add(a, b, c).to_bits(),
             expected.to_bits()
         );
-        // The kernels' copies: the baseline one as `mul_add`, the wide one always fused.
+        // The kernels' copies: the baseline one as `mul_add`, the wide one always fused
+        // (where the CPU has a wide copy to run).
+        let baseline = crate::isa::Isa::BASELINE;
         assert_eq!(
-            <f64 as Scalar>::mul_add_for::<false>(a, b, c).to_bits(),
+            <f64 as Scalar>::mul_add_on(a, b, c, baseline).to_bits(),
             expected.to_bits()
         );
-        assert_eq!(
-            <f64 as Scalar>::mul_add_for::<true>(a, b, c).to_bits(),
-            f64::mul_add(a, b, c).to_bits()
+        let wide = crate::isa::run(
+            |isa| Some(<f64 as Scalar>::mul_add_on(a, b, c, isa)),
+            |_| None,
         );
+        if let Some(wide) = wide {
+            assert_eq!(wide.to_bits(), f64::mul_add(a, b, c).to_bits());
+        }
     }
 
     #[test]

@@ -22,6 +22,7 @@
 //! subtree contiguous), as the generated code numbers them; [`CoordinateTree::new`] checks
 //! that when it is evaluated as a constant, at compile time.
 
+use crate::isa::Isa;
 use crate::Scalar;
 
 /// The tree of a mechanism's `N` velocity coordinates, as the sweeps walk it: each
@@ -125,6 +126,7 @@ pub fn solve_columns<
     const C: usize,
     const K: usize,
 >(
+    isa: Isa<WIDE>,
     tree: &CoordinateTree<N, P>,
     factor: &[T; P],
     inverse_pivot: &[T; N],
@@ -135,7 +137,7 @@ pub fn solve_columns<
     for j in (0..N).rev() {
         let end = tree.descendants_end[j];
         let below = tree.descendants.get(start..end).unwrap_or(&[]);
-        gather_row::<T, WIDE, N, P, C, K>(&mut columns, j, below, factor);
+        gather_row(isa, &mut columns, j, below, factor);
         start = end;
     }
     for k in 0..N {
@@ -146,7 +148,7 @@ pub fn solve_columns<
         }
     }
     // L X = Y.
-    solve_lower_columns::<T, WIDE, N, P, C, K>(tree, factor, columns);
+    solve_lower_columns(isa, tree, factor, columns);
 }
 
 /// X = L⁻¹ Y for every column of the `K` matrices Y in `columns`, in place: the last sweep
@@ -163,6 +165,7 @@ pub fn solve_lower_columns<
     const C: usize,
     const K: usize,
 >(
+    isa: Isa<WIDE>,
     tree: &CoordinateTree<N, P>,
     factor: &[T; P],
     mut columns: [&mut [[T; C]; N]; K],
@@ -172,7 +175,7 @@ pub fn solve_lower_columns<
     for k in 0..N {
         let end = tree.row_end[k];
         let above = tree.ancestors.get(start..end).unwrap_or(&[]);
-        gather_row::<T, WIDE, N, P, C, K>(&mut columns, k, above, factor);
+        gather_row(isa, &mut columns, k, above, factor);
         start = end;
     }
 }
@@ -202,6 +205,7 @@ fn gather_row<
     const C: usize,
     const K: usize,
 >(
+    isa: Isa<WIDE>,
     columns: &mut [&mut [[T; C]; N]; K],
     r: usize,
     terms: &[(usize, usize)],
@@ -218,7 +222,7 @@ fn gather_row<
         if let (Some(&l), true) = (factor.get(at), other < N) {
             for m in 0..K {
                 for c in 0..C {
-                    row[m][c] = (-l).mul_add_for::<WIDE>(columns[m][other][c], row[m][c]);
+                    row[m][c] = isa.mul_add(-l, columns[m][other][c], row[m][c]);
                 }
             }
         }
@@ -230,7 +234,7 @@ fn gather_row<
 
 #[cfg(test)]
 mod tests {
-    use super::{mirror_upper_triangle, solve_columns, solve_lower_columns, CoordinateTree};
+    use super::{mirror_upper_triangle, solve_columns, solve_lower_columns, CoordinateTree, Isa};
 
     /// A free base's six coordinates in a chain, then two legs of two.
     const PARENTS: [Option<usize>; 10] = [
@@ -285,7 +289,8 @@ mod tests {
         let b: [[f64; 3]; 10] =
             core::array::from_fn(|r| core::array::from_fn(|c| ((r * 3 + c) as f64).cos()));
         let (mut x, mut twice) = (b, b);
-        solve_columns::<f64, false, 10, PAIRS, 3, 2>(
+        solve_columns(
+            Isa::BASELINE,
             &TREE,
             &factor,
             &d.map(|x| 1.0 / x),
@@ -304,12 +309,13 @@ mod tests {
             }
         }
         // The wide copy's fused products change the last bits only.
-        let mut wide = b;
-        solve_columns::<f64, true, 10, PAIRS, 3, 1>(
-            &TREE,
-            &factor,
-            &d.map(|x| 1.0 / x),
-            [&mut wide],
+        let wide = crate::isa::run(
+            |isa| {
+                let mut wide = b;
+                solve_columns(isa, &TREE, &factor, &d.map(|x| 1.0 / x), [&mut wide]);
+                wide
+            },
+            |_| x,
         );
         for (a, b) in x.iter().flatten().zip(wide.iter().flatten()) {
             assert!((a - b).abs() < 1e-13);
@@ -329,18 +335,13 @@ mod tests {
         for j in 0..10 {
             let mut x = [[0.0; 1]; 10];
             x[j][0] = 1.0;
-            solve_columns::<f64, false, 10, PAIRS, 1, 1>(
-                &TREE,
-                &factor,
-                &d.map(|x| 1.0 / x),
-                [&mut x],
-            );
+            solve_columns(Isa::BASELINE, &TREE, &factor, &d.map(|x| 1.0 / x), [&mut x]);
             for (r, row) in halfway.iter_mut().enumerate() {
                 row[j] = (0..10).map(|c| l[r][c] * x[c][0]).sum();
             }
         }
         let mut x = halfway;
-        solve_lower_columns::<f64, false, 10, PAIRS, 10, 1>(&TREE, &factor, [&mut x]);
+        solve_lower_columns(Isa::BASELINE, &TREE, &factor, [&mut x]);
         mirror_upper_triangle(&mut x);
         let m = dense(&factor, &d);
         for r in 0..10 {

@@ -221,16 +221,6 @@ impl Scalar for F64x4 {
     fn mul_add(self, a: Self, b: Self) -> Self {
         Self(triples(self.0, a.0, b.0, Scalar::mul_add))
     }
-    /// `f64`'s on each lane: fused in the wide copy, as the `f64` kernel.
-    #[inline(always)]
-    fn mul_add_for<const WIDE: bool>(self, a: Self, b: Self) -> Self {
-        Self(triples(
-            self.0,
-            a.0,
-            b.0,
-            <f64 as Scalar>::mul_add_for::<WIDE>,
-        ))
-    }
     /// `f64`'s batch on each lane's N angles: in the wide copy one AVX register per
     /// `F64x4` (four angles, one of each lane), bit for bit what `f64`'s wide batch gives
     /// each angle; in the baseline copy `f64`'s batch of each lane's angles in turn.
@@ -264,8 +254,9 @@ impl Scalar for F64x4 {
         if let Some(proof) = isa.avx2_fma() {
             return fused(proof, self, a, b);
         }
-        let _ = isa;
-        self.mul_add_for::<WIDE>(a, b)
+        Self(triples(self.0, a.0, b.0, |x, y, z| {
+            <f64 as Scalar>::mul_add_on(x, y, z, isa)
+        }))
     }
     /// `f64`'s choice of copy.
     #[inline(always)]
