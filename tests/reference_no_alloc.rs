@@ -2,7 +2,9 @@
 //! (this test binary's own, so it holds a single test) sees no allocation, reallocation or
 //! deallocation during any method of [`Reference`] after [`Reference::new`], from the first
 //! call on, for a fixed-base arm (the UR5 anchor) and for a tree with a free-flyer root,
-//! revolute and prismatic joints, armature, damping and loads in body and world axes.
+//! revolute and prismatic joints, armature, damping and loads in body and world axes. It
+//! first lets the harness's main thread block ([`dynamics_tests::let_the_harness_settle`]),
+//! whose first wait allocates once.
 
 use dynamics_runtime::{
     BodySpec, Inertia, JointSpec, LoadSpec, Model, ModelBuilder, Reference, Wrench,
@@ -125,6 +127,7 @@ fn exercise(reference: &mut Reference<f64>, q: &[f64], v: &[f64], a: &[f64]) -> 
 
 #[test]
 fn reference_methods_allocate_nothing_after_new() {
+    dynamics_tests::let_the_harness_settle();
     let ur5 = anchors::load("ur5").unwrap_or_else(|e| panic!("{e}"));
     let model = ur5.model.builder().build().expect("ur5 builds");
     let sample = &ur5.samples[0];
