@@ -24,7 +24,8 @@
 # baseline (SSE2), each dynamics output in paired rounds in one process (public_isa.rs,
 # an example of the robot's crate); the table goes to build/public/isa.md.
 # Robots: go2 (Unitree quadruped, free base, 18 dof), xarm7 (7-dof arm), g1 (Unitree humanoid,
-# 29 joints, free base, 35 dof). Nothing of example-robot-data is committed.
+# 29 joints, free base, 35 dof); by name also the 18-dof quadrupeds anymal (ANYmal C),
+# solo12, a1 and hyq. Nothing of example-robot-data is committed.
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"

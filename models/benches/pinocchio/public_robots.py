@@ -31,6 +31,10 @@ ROBOTS = {
     "go2": ("go2_description/urdf/go2.urdf", True),
     "xarm7": ("xarm_description/urdf/xarm7.urdf", False),
     "g1": ("g1_description/urdf/g1_29dof_rev_1_0.urdf", True),
+    "anymal": ("anymal_c_simple_description/urdf/anymal.urdf", True),
+    "solo12": ("solo_description/robots/solo12.urdf", True),
+    "a1": ("a1_description/urdf/a1.urdf", True),
+    "hyq": ("hyq_description/robots/hyq_no_sensors.urdf", True),
 }
 SAMPLES = 20
 
