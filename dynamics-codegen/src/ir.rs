@@ -141,10 +141,10 @@ impl TreeSolve {
 
     /// What the loop costs, in straight-line operations of about the same time: the
     /// right-hand sides of one width go through the loop together ([`Self::width_groups`]),
-    /// K matrices of C columns, so each row update is ⌈C K / 4⌉ AVX2 multiply-adds and about two more
-    /// instructions; the 2 P row updates of the sweeps (P the factor's length; P alone
-    /// for [`Sweeps::LastOfInverse`]) and the N rows scaled by 1 / D_k (not for [`Sweeps::LastOfInverse`])
-    /// cost 1.5 operations per such step, plus 480 for the call
+    /// K matrices of C columns, so each row update is ⌈C K / 4⌉ AVX2 multiply-adds and about
+    /// two more instructions; the 2 P row updates of the sweeps (P the factor's length; P
+    /// alone for [`Sweeps::LastOfInverse`]) and the N rows scaled by 1 / D_k (none for
+    /// [`Sweeps::LastOfInverse`]) cost 1.5 operations per such step, plus 480 for the call
     /// (fitted to the UR5's, the Panda's and the quadruped's forward-dynamics derivatives
     /// timed against their straight-line solves: about 70 ns plus 0.21 ns a step, at about
     /// 7 straight-line operations a nanosecond). The fit predates the solve in place, which

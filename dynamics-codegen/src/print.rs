@@ -191,7 +191,7 @@ fn tree_solve_expr(s: &TreeSolve, in_kernel: bool) -> TokenStream {
     let groups = s.width_groups();
     let solves = |wide: TokenStream| {
         let calls = groups.iter().map(|(width, members)| {
-            let solved = members.iter().map(|&k| syn::Index::from(k));
+            let solved: Vec<syn::Index> = members.iter().map(|&k| syn::Index::from(k)).collect();
             let c = Literal::usize_unsuffixed(*width);
             let k = Literal::usize_unsuffixed(members.len());
             match s.sweeps {
@@ -200,15 +200,12 @@ fn tree_solve_expr(s: &TreeSolve, in_kernel: bool) -> TokenStream {
                         isa, &TREE, &factor, &inverse_pivot, [#(&mut solved.#solved),*],
                     );
                 },
-                Sweeps::LastOfInverse => {
-                    let mirrored = members.iter().map(|&k| syn::Index::from(k));
-                    quote! {
-                        #runtime::tree_ldlt::solve_lower_columns::<T, #wide, #n, #p, #c, #k>(
-                            isa, &TREE, &factor, [#(&mut solved.#solved),*],
-                        );
-                        #(#runtime::tree_ldlt::mirror_upper_triangle(&mut solved.#mirrored);)*
-                    }
-                }
+                Sweeps::LastOfInverse => quote! {
+                    #runtime::tree_ldlt::solve_lower_columns::<T, #wide, #n, #p, #c, #k>(
+                        isa, &TREE, &factor, [#(&mut solved.#solved),*],
+                    );
+                    #(#runtime::tree_ldlt::mirror_upper_triangle(&mut solved.#solved);)*
+                },
             }
         });
         let returned = if s.rhs.len() == 1 {

@@ -50,11 +50,17 @@ pub fn factor_rows(
 ) -> (Vec<Option<usize>>, Vec<Node>, Vec<Node>) {
     let parents = coordinate_parents(model);
     let inverse_pivot = factor(g, &parents, &mut m);
-    let rows = (0..m.len())
+    let rows = factor_by_rows(&parents, &m);
+    (parents, rows, inverse_pivot)
+}
+
+/// L_ki from the factorization in `m`, row after row, each row's entries from k's parent
+/// towards the root: the layout of `dynamics_runtime::tree_ldlt`'s factor.
+fn factor_by_rows(parents: &[Option<usize>], m: &[Vec<Node>]) -> Vec<Node> {
+    (0..m.len())
         .flat_map(|k| std::iter::successors(parents[k], |&i| parents[i]).map(move |i| (k, i)))
         .map(|(k, i)| m[k][i])
-        .collect();
-    (parents, rows, inverse_pivot)
+        .collect()
 }
 
 /// Solves a dense symmetric system M x = y (a chain: every coordinate descends from the
@@ -150,10 +156,7 @@ pub fn inverse_halfway(g: &Graph, model: &Model, mut m: Vec<Vec<Node>>) -> Inver
         .zip(&inverse_pivot)
         .map(|(row, &d)| row.iter().map(|&x| g.mul(x, d)).collect())
         .collect();
-    let factor = (0..m.len())
-        .flat_map(|k| std::iter::successors(parents[k], |&i| parents[i]).map(move |i| (k, i)))
-        .map(|(k, i)| m[k][i])
-        .collect();
+    let factor = factor_by_rows(&parents, &m);
     InverseHalfway {
         parents,
         factor,
