@@ -51,7 +51,7 @@ use crate::expand::{
 use crate::ir::{Arg, Function, FunctionSpec, Output, Sweeps, TreeSolve};
 use crate::model::{JointKind, LoadFrame, Model};
 use crate::passes::base_parameters;
-use crate::sym::{Array, Graph, Node, Vec3};
+use crate::sym::{Array, Graph, Mat3, Node, Vec3};
 
 /// One function of the catalog.
 pub(crate) struct Entry {
@@ -1244,9 +1244,18 @@ fn joint_reactions(model: &Model) -> Expanded {
     };
     // The joint wrenches are the declared bodies' (base parameters keep τ only).
     let sweep = rnea::sweep(&g, model, &t, &i, &sweep_inputs);
+    // In the joint frame as declared: turned back where the tree turned the body's frame.
     let rows = sweep
         .wrenches()
         .iter()
+        .zip(&model.bodies)
+        .map(|(&(f, m), body)| match body.joint.joint_frame_in_body {
+            Some(turn) => {
+                let back = Mat3::constant(&g, turn).transpose();
+                (back.mul_vec(&g, f), back.mul_vec(&g, m))
+            }
+            None => (f, m),
+        })
         .map(|(f, m)| vec![f.get(0), f.get(1), f.get(2), m.get(0), m.get(1), m.get(2)])
         .collect();
     Expanded {
@@ -1286,7 +1295,7 @@ fn center_of_mass_jacobian(model: &Model) -> Expanded {
 
 fn joint_placements(model: &Model) -> Expanded {
     let (g, t, _) = fresh_graph(model);
-    let placements = kinematics::body_poses(&g, model, &t)
+    let placements = kinematics::joint_frame_poses(&g, model, &t)
         .iter()
         .map(pose_output)
         .collect();
@@ -1367,7 +1376,7 @@ fn forward_kinematics(model: &Model) -> Expanded {
     let (g, t, _) = fresh_graph(model);
     let v = inputs(&g, Array::V, model.nv);
     let a = inputs(&g, Array::A, model.nv);
-    let placements = kinematics::body_poses(&g, model, &t)
+    let placements = kinematics::joint_frame_poses(&g, model, &t)
         .iter()
         .map(pose_output)
         .collect();

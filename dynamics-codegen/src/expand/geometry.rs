@@ -1,7 +1,8 @@
 //! Per-body symbolic data the sweeps share: the joint transform of each body and its
 //! inertia about the body origin P.
 //!
-//! Body i's frame is the joint frame after the motion. Its pose in the parent frame is
+//! Body i's frame is the joint frame after the motion (turned about the joint's axis where
+//! the tree chose to, see `model::Joint::joint_frame_in_body`). Its pose in the parent frame is
 //! `E_i` (rotation, body → parent) and `r_i` (origin P_i in the parent frame):
 //! revolute `E = R_pl · Rot(s, q)`, `r = p_pl`; prismatic `E = R_pl`, `r = p_pl + R_pl s q`;
 //! free `E = R(quaternion)`, `r = (x, y, z)`.

@@ -90,6 +90,23 @@ pub fn body_poses(g: &Graph, model: &Model, transforms: &[JointTransform]) -> Ve
     poses
 }
 
+/// Every body's joint frame (after the motion, as declared: Pinocchio's `oMi`) in the
+/// world: the body's pose, turned back where the tree turned the body's frame about its
+/// joint axis (R_joint = R_body · `joint_frame_in_body`; the origin is the same).
+pub fn joint_frame_poses(g: &Graph, model: &Model, transforms: &[JointTransform]) -> Vec<Pose> {
+    body_poses(g, model, transforms)
+        .into_iter()
+        .zip(&model.bodies)
+        .map(|(pose, body)| match body.joint.joint_frame_in_body {
+            Some(turn) => Pose {
+                rotation_in_world: pose.rotation_in_world.mul(g, Mat3::constant(g, turn)),
+                origin_in_world: pose.origin_in_world,
+            },
+            None => pose,
+        })
+        .collect()
+}
+
 /// m p + R h: a body's first moment about the world origin, in world coordinates.
 fn first_moment_in_world(g: &Graph, pose: &Pose, inertia: &BodyInertia) -> Vec3 {
     pose.origin_in_world

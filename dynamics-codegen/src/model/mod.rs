@@ -15,6 +15,7 @@
 
 mod dh;
 mod diagnostics;
+mod frame_turns;
 pub(crate) mod linear;
 mod resolve;
 mod resolved;
@@ -355,6 +356,12 @@ pub struct Joint {
     pub rotation_in_parent: [[f64; 3]; 3],
     /// Origin of the joint frame in the parent body frame.
     pub translation_in_parent: Vec3,
+    /// The rotation from the joint frame after the motion (the body frame as declared:
+    /// Pinocchio's joint frame) to the tree body's frame: `None` when they are the same,
+    /// else a constant turn about the joint's axis that makes the placements sparser (see
+    /// `frame_turns`). `rotation_in_parent` already includes it; outputs that report the
+    /// joint frame (placements, reactions) turn back with it.
+    pub joint_frame_in_body: Option<[[f64; 3]; 3]>,
     /// Rotor inertia reflected to each coordinate.
     pub armature: Value,
     /// Viscous friction coefficient of each coordinate.

@@ -7,7 +7,7 @@
 use super::dh;
 use super::linear;
 use super::resolved::{Resolved, ResolvedBody, ResolvedFrame, ResolvedJoint, ResolvedLimits};
-use super::value::{rotate_matrix, Mat3, Value, Vec3};
+use super::value::{self, rotate_matrix, Mat3, Value, Vec3};
 use super::{rules, Diagnostics, Outputs, Parameter};
 use crate::syntax::{self, Axis, InertiaForm, Number, NumberValue, Rotation, ShapeKind, SpanRange};
 
@@ -264,16 +264,7 @@ const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.
 /// gives the Panda's quarter turns as 2.2e-16 and 1): a rotation by 1e-15 rad is no
 /// rotation, and keeping the residue costs the Panda's mass matrix 80 % more operations.
 fn rows(m: &linear::Matrix3) -> [[f64; 3]; 3] {
-    let snap = |x: f64| {
-        if x.abs() < 1e-15 {
-            0.0
-        } else if (x.abs() - 1.0).abs() < 1e-15 {
-            x.signum()
-        } else {
-            x
-        }
-    };
-    m.map(|row| row.map(snap))
+    value::snapped(m)
 }
 
 /// Resolves every number, form and name list of the declaration.

@@ -102,8 +102,48 @@ fn a_setting_given_twice_is_an_error() {
     }
 }
 
+/// ANYmal's hip: the joint frame turned by 150° about the joint's axis x, the link turned
+/// back by −150° through a weld. The tree turns the body's frame about x so that the hip's
+/// placement and the knee's are signed permutations, and keeps the turn for the outputs
+/// that report the joint frame; the physics (the mass matrix at the reference) is checked
+/// by the generated-vs-reference tests of turned models.
+#[test]
+fn a_frame_turned_about_its_axis_and_back_is_placed_by_a_signed_permutation() {
+    let m = lower_tokens(quote! {
+        struct Hip;
+        body hip { mass: 1.0, com: [0.05, 0.01, 0.0], inertia: [[0.01, 0.0, 0.0], [0.0, 0.02, 0.0], [0.0, 0.0, 0.03]] }
+        body hip_fixed { mass: 0.0, com: [0.0, 0.0, 0.0], inertia: [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]] }
+        body thigh { mass: 2.0, com: [0.0, 0.0, -0.1], inertia: [[0.03, 0.0, 0.0], [0.0, 0.03, 0.0], [0.0, 0.0, 0.01]] }
+        joint haa: revolute(ground -> hip) { axis: x, at: [0.3, 0.1, 0.0], rotation: rpy(2.61799387799, 0.0, 0.0) }
+        joint turn_back: fixed(hip -> hip_fixed) { rotation: rpy(-2.61799387799, 0.0, 0.0) }
+        joint hfe: revolute(hip_fixed -> thigh) { axis: x, at: [0.06, 0.08, 0.0], rotation: rpy(0.0, 0.0, pi / 2.0) }
+    })
+    .expect("valid");
+    let signed_permutation =
+        |r: [[f64; 3]; 3]| r.iter().flatten().all(|&x| x == 0.0 || x.abs() == 1.0);
+    let hip = &m.bodies[0].joint;
+    assert!(hip.joint_frame_in_body.is_some());
+    assert!(
+        signed_permutation(hip.rotation_in_parent),
+        "{:?}",
+        hip.rotation_in_parent
+    );
+    let knee = &m.bodies[1].joint;
+    assert!(
+        signed_permutation(knee.rotation_in_parent),
+        "{:?}",
+        knee.rotation_in_parent
+    );
+    // The hip's mass centre, turned with the frame, keeps its length.
+    let c = value::nominal3(&m.bodies[0].parts[0].com_in_body, &[]);
+    assert!(
+        (c.iter().map(|x| x * x).sum::<f64>() - (0.05f64.powi(2) + 0.01f64.powi(2))).abs() < 1e-15
+    );
+}
+
 /// A matrix printed by a tool that computed a quarter turn from angles (Pinocchio's Panda):
-/// its 2.2e-16 residues become exact zeros, other entries stay as written.
+/// its 2.2e-16 residues become exact zeros, other entries stay as written (j2 turns about
+/// x, so no turn of its frame about its axis could clear them).
 #[test]
 fn explicit_rotations_lose_their_rounding_residue() {
     let m = lower_tokens(quote! {
@@ -115,7 +155,7 @@ fn explicit_rotations_lose_their_rounding_residue() {
             rotation: [[1.0, 0.0, 0.0], [0.0, 2.220446049250313e-16, 1.0], [0.0, -1.0, 2.220446049250313e-16]]
         }
         joint j2: revolute(a -> b) {
-            axis: z,
+            axis: x,
             rotation: [[0.6, 0.8, 0.0], [-0.8, 0.6, 0.0], [0.0, 0.0, 1.0]]
         }
     })

@@ -6,7 +6,12 @@
 //! A body joined to its parent by a fixed joint becomes a [`Part`] of the parent's tree
 //! body, expressed in that body's frame: c' = R c + p, I_G' = R I_G Rᵀ. Joints and loads on
 //! a merged body are re-based the same way.
+//!
+//! A moving body's tree frame is its joint frame after the motion, turned about the joint's
+//! axis where [`super::frame_turns`] finds that the turn makes the placements and the
+//! inertia sparser; everything on the body is re-based by that turn as by a weld.
 
+use super::frame_turns;
 use super::linear::{self, Matrix3, Vector3};
 use super::resolved::{Resolved, ResolvedJoint};
 use super::rules::{self, GROUND};
@@ -45,6 +50,19 @@ pub(crate) fn build(
         .map(|(i, b)| (b.name.text.as_str(), i))
         .collect();
     let order = depth_first_order(resolved, &body_index);
+    let nominal = resolved.nominal_parameters();
+    let mut children_of: HashMap<&str, Vec<usize>> = HashMap::new();
+    for (j, joint) in resolved.joints.iter().enumerate() {
+        children_of
+            .entry(joint.parent.text.as_str())
+            .or_default()
+            .push(j);
+    }
+    // The force analysis fixes its unknowns' directions in the tree bodies' frames, as
+    // declared: its bodies keep them.
+    let turns_allowed = !(resolved.outputs.force_analysis
+        || resolved.outputs.constraints
+        || !mechanism.constraints.is_empty());
     let mut attached: Vec<Option<Attachment>> = vec![None; resolved.bodies.len()];
     let mut bodies: Vec<Body> = Vec::new();
     let (mut nq, mut nv) = (0, 0);
@@ -100,11 +118,46 @@ pub(crate) fn build(
             (Declared::Free, _) => JointKind::Free,
             (Declared::Revolute | Declared::Prismatic, None) => return None,
         };
+        // The child's declared frame in the joint frame after the motion: the same frame,
+        // or a standard DH row's C = Tx(a) Rx(α) (see `super::dh`).
+        let (frame_rotation, frame_translation) = match &joint.child_frame {
+            Some(c) => (c.rotation, c.translation.clone()),
+            None => (IDENTITY, zero3()),
+        };
+        // The tree body's frame: the joint frame, turned about the axis where that makes the
+        // placements sparser (see `super::frame_turns`). A turn Rot(s, φ) joins the joint's
+        // placement, and everything on the body is re-expressed by Rot(s, φ)ᵀ.
+        let turn = match &kind {
+            JointKind::Revolute { axis_in_joint } | JointKind::Prismatic { axis_in_joint }
+                if turns_allowed =>
+            {
+                let (below, mass) = turn_inputs(
+                    resolved,
+                    &children_of,
+                    &body_index,
+                    &joint.child.text,
+                    (frame_rotation, nominal3(&frame_translation, &nominal)),
+                    &nominal,
+                );
+                frame_turns::best_turn(*axis_in_joint, &rotation, &below, &mass)
+            }
+            _ => None,
+        };
+        let joint_frame_in_body = turn.map(|t| linear::transpose(&t));
+        let (rotation, frame_rotation, frame_translation) = match &joint_frame_in_body {
+            Some(back) => (
+                value::rotation_product(&rotation, &linear::transpose(back)),
+                value::rotation_product(back, &frame_rotation),
+                value::snapped_vector(&value::rotate(back, &frame_translation)),
+            ),
+            None => (rotation, frame_rotation, frame_translation),
+        };
         let tree_joint = Joint {
             name: joint.name.text.clone(),
             docs: joint.docs.clone(),
             rotation_in_parent: rotation,
             translation_in_parent: translation,
+            joint_frame_in_body,
             armature: joint.armature.0.clone(),
             damping: joint.damping.0.clone(),
             friction: joint.friction.0,
@@ -125,25 +178,22 @@ pub(crate) fn build(
         };
         nq += dq;
         nv += dv;
-        // The child's declared frame in its tree body's frame: the same frame, or a
-        // standard DH row's C = Tx(a) Rx(α) (see `super::dh`). Everything declared in the
-        // child's frame reaches the tree through this placement, as a welded body's does;
-        // its own mass centre and inertia are carried here.
-        let (frame_rotation, frame_translation, com_in_body, inertia_com_in_body) =
-            match &joint.child_frame {
-                Some(c) => (
-                    c.rotation,
-                    c.translation.clone(),
-                    c.point(&declared.com),
-                    value::rotate_matrix(&c.rotation, &declared.inertia),
-                ),
-                None => (
-                    IDENTITY,
-                    zero3(),
-                    declared.com.clone(),
-                    declared.inertia.clone(),
-                ),
-            };
+        // Everything declared in the child's frame reaches the tree through its placement
+        // in the tree body's frame, as a welded body's does; its own mass centre and inertia
+        // are carried here.
+        let (com_in_body, inertia_com_in_body) = if joint.child_frame.is_none()
+            && tree_joint.joint_frame_in_body.is_none()
+        {
+            (declared.com.clone(), declared.inertia.clone())
+        } else {
+            (
+                value::snapped_vector(&value::add(
+                    &value::rotate(&frame_rotation, &declared.com),
+                    &frame_translation,
+                )),
+                value::snapped_matrix(&value::rotate_matrix(&frame_rotation, &declared.inertia)),
+            )
+        };
         attached[child] = Some(Attachment {
             body: Some(bodies.len()),
             rotation: frame_rotation,
@@ -164,7 +214,6 @@ pub(crate) fn build(
             }],
         });
     }
-    let nominal = resolved.nominal_parameters();
     if resolved.outputs.any_dynamics() {
         check_coordinates_have_inertia(&bodies, resolved, &nominal, d);
     }
@@ -333,6 +382,70 @@ fn frames(
             )
             .collect(),
     }
+}
+
+/// What a turn of a tree body's frame changes: the moving joints below the declared body
+/// (directly or through bodies welded to it) and the inertia of the body and the bodies
+/// welded to it, in the frame where `placement` places the declared body's own frame. (A
+/// walk with its own stack: a URDF may weld thousands of links in a chain.)
+fn turn_inputs(
+    resolved: &Resolved,
+    children_of: &HashMap<&str, Vec<usize>>,
+    body_index: &HashMap<&str, usize>,
+    body: &str,
+    placement: ([[f64; 3]; 3], [f64; 3]),
+    nominal: &[f64],
+) -> (
+    Vec<frame_turns::ChildPlacement>,
+    frame_turns::MassProperties,
+) {
+    let mut below = Vec::new();
+    let mut mass = frame_turns::MassProperties {
+        first_moment: [0.0; 3],
+        inertia_about_origin: [[0.0; 3]; 3],
+    };
+    let mut stack = vec![(body, placement)];
+    while let Some((body, (rotation, translation))) = stack.pop() {
+        if let Some(declared) = body_index.get(body).map(|&b| &resolved.bodies[b]) {
+            let m = declared.mass.nominal(nominal);
+            let c = linear::add_vectors(
+                &linear::mul_vector(&rotation, &nominal3(&declared.com, nominal)),
+                &translation,
+            );
+            let i_g =
+                value::nominal33(&value::rotate_matrix(&rotation, &declared.inertia), nominal);
+            let c2 = linear::norm_squared(&c);
+            for i in 0..3 {
+                mass.first_moment[i] += m * c[i];
+                for j in 0..3 {
+                    let shift = if i == j { c2 } else { 0.0 } - c[i] * c[j];
+                    mass.inertia_about_origin[i][j] += i_g[i][j] + m * shift;
+                }
+            }
+        }
+        for &k in children_of.get(body).into_iter().flatten() {
+            let joint = &resolved.joints[k];
+            let joint_rotation = value::rotation_product(&rotation, &joint.rotation);
+            let origin = linear::add_vectors(
+                &linear::mul_vector(&rotation, &nominal3(&joint.translation, nominal)),
+                &translation,
+            );
+            match (joint.kind, joint.axis) {
+                (Declared::Fixed, _) => {
+                    stack.push((joint.child.text.as_str(), (joint_rotation, origin)))
+                }
+                (kind, axis) => below.push(frame_turns::ChildPlacement {
+                    rotation_in_body: joint_rotation,
+                    origin_in_body: origin,
+                    axis: match kind {
+                        Declared::Revolute | Declared::Prismatic => axis.map(|(a, _)| unit(a)),
+                        _ => None,
+                    },
+                }),
+            }
+        }
+    }
+    (below, mass)
 }
 
 fn unit(axis: [f64; 3]) -> [f64; 3] {

@@ -96,11 +96,30 @@ pub fn rotate(r: &[[f64; 3]; 3], v: &Vec3) -> Vec3 {
     std::array::from_fn(|i| (0..3).fold(Value::constant(0.0), |acc, j| &acc + &(&v[j] * r[i][j])))
 }
 
-/// `A B` of two constant rotations (rows): how the tree composes placements, and how a
-/// modified DH row composes Rx(α) Rz(θ) (the same arithmetic, so that a table declared in
-/// either convention gives the same numbers).
+/// `A B` of two constant rotations (rows), [`snapped`]: how the tree composes placements,
+/// and how a modified DH row composes Rx(α) Rz(θ) (the same arithmetic, so that a table
+/// declared in either convention gives the same numbers).
 pub fn rotation_product(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
+    snapped(&std::array::from_fn(|i| {
+        std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum())
+    }))
+}
+
+/// A rotation's entries within 1e-15 of 0 or ±1 taken as exactly that. `rpy = "0 0 1.5708"`
+/// means a quarter turn, whose cosine is 0, not 6e-17, and a product of rotations that
+/// cancel is the identity, not 1 − 1e-16: the exact zeros let the expansion fold the terms
+/// they multiply, and a rotation by 1e-15 rad is no rotation.
+pub fn snapped(m: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    let snap = |x: f64| {
+        if x.abs() < 1e-15 {
+            0.0
+        } else if (x.abs() - 1.0).abs() < 1e-15 {
+            x.signum()
+        } else {
+            x
+        }
+    };
+    m.map(|row| row.map(snap))
 }
 
 /// `R M Rᵀ` for a constant rotation R and an affine matrix M.
@@ -126,6 +145,45 @@ pub fn add(a: &Vec3, b: &Vec3) -> Vec3 {
 /// Nominal values of a vector.
 pub fn nominal3(v: &Vec3, p: &[f64]) -> [f64; 3] {
     std::array::from_fn(|i| v[i].nominal(p))
+}
+
+/// A vector rotated by a turn, with the rounding left where an entry should cancel made
+/// exact: see [`snapped_together`].
+pub fn snapped_vector(v: &Vec3) -> Vec3 {
+    let mut entries = snapped_together(v).into_iter();
+    std::array::from_fn(|_| entries.next().unwrap_or_default())
+}
+
+/// An inertia rotated by a turn, with the rounding left where an entry should cancel made
+/// exact: see [`snapped_together`].
+pub fn snapped_matrix(m: &Mat3) -> Mat3 {
+    let flat: Vec<Value> = m.iter().flatten().cloned().collect();
+    let mut entries = snapped_together(&flat).into_iter();
+    std::array::from_fn(|_| std::array::from_fn(|_| entries.next().unwrap_or_default()))
+}
+
+/// Values that one rotation produced, with the parts below 1e-14 of the largest of their
+/// kind dropped: the constant parts apart, and each parameter's coefficients apart.
+fn snapped_together(values: &[Value]) -> Vec<Value> {
+    let largest = |part: &dyn Fn(&Value) -> f64| values.iter().map(part).fold(0.0_f64, f64::max);
+    let constant_scale = largest(&|x| x.constant.abs());
+    let coefficient = |x: &Value, k: usize| x.terms.iter().find(|t| t.0 == k).map_or(0.0, |t| t.1);
+    values
+        .iter()
+        .map(|x| Value {
+            constant: if x.constant.abs() < 1e-14 * constant_scale {
+                0.0
+            } else {
+                x.constant
+            },
+            terms: x
+                .terms
+                .iter()
+                .copied()
+                .filter(|&(k, c)| c.abs() >= 1e-14 * largest(&|y| coefficient(y, k).abs()))
+                .collect(),
+        })
+        .collect()
 }
 
 /// Nominal values of a matrix.
