@@ -16,6 +16,8 @@ struct Resolver<'d> {
     /// The parameters' nominal values (0 for one whose nominal value is reported).
     nominal: Vec<f64>,
     used: Vec<bool>,
+    /// Rotation entries within it of 0 or ±1 are made exact (`rotation_tolerance:`).
+    rotation_tolerance: f64,
     diagnostics: &'d mut Diagnostics,
 }
 
@@ -98,7 +100,7 @@ impl Resolver<'_> {
         match rotation {
             Rotation::Rpy(angles, _) => {
                 let [r, p, y] = std::array::from_fn(|i| self.constant(&angles[i], "a rotation"));
-                rows(&linear::rotation_from_rpy(r, p, y))
+                rows(&linear::rotation_from_rpy(r, p, y), self.rotation_tolerance)
             }
             Rotation::AxisAngle(axis, angle, _) => {
                 let a = self.constant_vector(axis, "a rotation");
@@ -108,14 +110,17 @@ impl Resolver<'_> {
                     rules::report_zero_rotation_axis(rotation.span(), self.diagnostics);
                     return IDENTITY;
                 }
-                rows(&linear::rotation_from_axis_angle(
-                    &linear::normalize(&a),
-                    angle,
-                ))
+                rows(
+                    &linear::rotation_from_axis_angle(&linear::normalize(&a), angle),
+                    self.rotation_tolerance,
+                )
             }
-            Rotation::Matrix(m) => rows(&std::array::from_fn(|i| {
-                std::array::from_fn(|j| self.constant(&m.rows[i][j], "a rotation"))
-            })),
+            Rotation::Matrix(m) => {
+                let entries = std::array::from_fn(|i| {
+                    std::array::from_fn(|j| self.constant(&m.rows[i][j], "a rotation"))
+                });
+                rows(&entries, self.rotation_tolerance)
+            }
         }
     }
 
@@ -162,7 +167,9 @@ impl Resolver<'_> {
         let mut angle = |n: &Option<Number>| n.as_ref().map_or(0.0, |n| self.constant(n, what));
         let (alpha, theta) = (angle(&placement.alpha), angle(&placement.theta));
         let row = dh::Row { a, alpha, d, theta };
-        (dh::place(placement.convention, row, rows), placement.span)
+        let tolerance = self.rotation_tolerance;
+        let snap = move |m: &linear::Matrix3| rows(m, tolerance);
+        (dh::place(placement.convention, row, &snap), placement.span)
     }
 
     /// I_G from an inertia form; shapes scale with the (affine) mass.
@@ -257,14 +264,16 @@ impl Resolver<'_> {
 
 const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
-/// Rows of a rotation, with entries within 1e-15 of 0 or ±1 made exact: `rpy(pi / 2, 0, 0)`
-/// means a quarter turn, whose cosine is 0, not 6e-17, and the exact zeros let the
-/// expansion fold the terms they multiply. The same holds for matrices given by their
-/// entries, which are often printed by a tool that computed them from angles (Pinocchio
-/// gives the Panda's quarter turns as 2.2e-16 and 1): a rotation by 1e-15 rad is no
-/// rotation, and keeping the residue costs the Panda's mass matrix 80 % more operations.
-fn rows(m: &linear::Matrix3) -> [[f64; 3]; 3] {
-    value::snapped(m)
+/// Rows of a rotation, with entries within the tolerance (1e-15 by default) of 0 or ±1 made
+/// exact: `rpy(pi / 2, 0, 0)` means a quarter turn, whose cosine is 0, not 6e-17, and the
+/// exact zeros let the expansion fold the terms they multiply. The same holds for matrices
+/// given by their entries, which are often printed by a tool that computed them from angles
+/// (Pinocchio gives the Panda's quarter turns as 2.2e-16 and 1): a rotation by 1e-15 rad is
+/// no rotation, and keeping the residue costs the Panda's mass matrix 80 % more operations.
+/// A URDF that writes π/2 as 1.57079632679 leaves 4.9e-12: `rotation_tolerance: 1e-10;`
+/// takes that as exact too.
+fn rows(m: &linear::Matrix3, tolerance: f64) -> [[f64; 3]; 3] {
+    value::snapped_within(m, tolerance)
 }
 
 /// Resolves every number, form and name list of the declaration.
@@ -302,8 +311,15 @@ pub(crate) fn resolve(mechanism: &syntax::Mechanism, diagnostics: &mut Diagnosti
             })
             .collect(),
         used: vec![false; parameters.len()],
+        rotation_tolerance: value::DEFAULT_ROTATION_TOLERANCE,
         diagnostics,
     };
+    if let Some(tolerance) = &mechanism.rotation_tolerance {
+        let t = r.constant(tolerance, "a rotation tolerance");
+        if rules::rotation_tolerance_is_reasonable(t, tolerance.span, r.diagnostics) {
+            r.rotation_tolerance = t;
+        }
+    }
     let gravity = match &mechanism.gravity {
         Some(syntax::Gravity::Vector(g)) => r.constant_vector(g, "gravity"),
         Some(syntax::Gravity::None(_)) => [0.0; 3],

@@ -155,6 +155,27 @@ pub(crate) fn report_parameter_not_allowed(
     );
 }
 
+/// Rule: a `rotation_tolerance` lies between 1e-15 (the default) and 1e-6. Wider, it
+/// would make a rotation's small entries zero while its others stay, which is no rotation.
+pub(crate) fn rotation_tolerance_is_reasonable(
+    tolerance: f64,
+    span: SpanRange,
+    d: &mut Diagnostics,
+) -> bool {
+    let reasonable = (1e-15..=1e-6).contains(&tolerance);
+    if !reasonable {
+        d.error(
+            span,
+            format!(
+                "`rotation_tolerance` is {tolerance:e}; it must lie between 1e-15 (the default) \
+                 and 1e-6: rotation entries within it of 0 or ±1 are taken as exactly that \
+                 (1e-10 takes a quarter turn written 1.57079632679 as exact)"
+            ),
+        );
+    }
+    reasonable
+}
+
 /// Rule: an axis-angle rotation has a nonzero, finite axis.
 pub(crate) fn report_zero_rotation_axis(span: SpanRange, d: &mut Diagnostics) {
     d.error(

@@ -81,6 +81,10 @@ fn a_setting_given_twice_is_an_error() {
             quote! { force_analysis: spatial; },
         ),
         (quote! { isa: baseline; }, quote! { isa: dispatch; }),
+        (
+            quote! { rotation_tolerance: 1e-10; },
+            quote! { rotation_tolerance: 1e-12; },
+        ),
     ] {
         let setting = first.to_string();
         let name = setting.split(' ').next().unwrap_or_default().to_string();
@@ -100,6 +104,47 @@ fn a_setting_given_twice_is_an_error() {
             "{setting}"
         );
     }
+}
+
+/// A quarter turn written to 11 decimals (as HyQ's and ANYmal's URDFs write it) leaves
+/// 4.9e-12 in its cosine: kept by default, as Pinocchio keeps it; `rotation_tolerance:
+/// 1e-10` makes it exact. A tolerance that is not a small constant is an error at it.
+#[test]
+fn a_rotation_tolerance_makes_written_quarter_turns_exact() {
+    let declare = |setting: proc_macro2::TokenStream| {
+        quote! {
+            struct Leg;
+            #setting
+            body a { mass: 1.0, com: [0.1, 0.0, 0.0], inertia: [[0.01, 0.0, 0.0], [0.0, 0.02, 0.0], [0.0, 0.0, 0.03]] }
+            body b { mass: 1.0, com: [0.1, 0.0, 0.0], inertia: [[0.01, 0.0, 0.0], [0.0, 0.02, 0.0], [0.0, 0.0, 0.03]] }
+            joint j1: revolute(ground -> a) { axis: z }
+            joint j2: revolute(a -> b) { axis: z, at: [0.2, 0.0, 0.0], rotation: rpy(1.57079632679, 0.0, 0.0) }
+        }
+    };
+    let kept = lower_tokens(declare(quote! {})).expect("valid");
+    let cosine = kept.bodies[1].joint.rotation_in_parent[1][1];
+    assert!(cosine != 0.0 && cosine.abs() < 1e-11, "{cosine}");
+    let exact = lower_tokens(declare(quote! { rotation_tolerance: 1e-10; })).expect("valid");
+    assert_eq!(
+        exact.bodies[1].joint.rotation_in_parent,
+        [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]
+    );
+    for bad in [quote! { 1e-3 }, quote! { 0.0 }, quote! { -1e-10 }] {
+        let e = errors(declare(quote! { rotation_tolerance: #bad; }));
+        assert!(
+            e.iter()
+                .any(|m| m.contains("must lie between 1e-15 (the default) and 1e-6")),
+            "{e:?}"
+        );
+    }
+    let e = errors(declare(
+        quote! { parameters: [t = 1e-10]; rotation_tolerance: t; },
+    ));
+    assert!(
+        e.iter()
+            .any(|m| m.contains("cannot be used in a rotation tolerance")),
+        "{e:?}"
+    );
 }
 
 /// ANYmal's hip: the joint frame turned by 150° about the joint's axis x, the link turned

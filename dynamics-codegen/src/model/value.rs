@@ -110,10 +110,18 @@ pub fn rotation_product(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
 /// cancel is the identity, not 1 − 1e-16: the exact zeros let the expansion fold the terms
 /// they multiply, and a rotation by 1e-15 rad is no rotation.
 pub fn snapped(m: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    snapped_within(m, DEFAULT_ROTATION_TOLERANCE)
+}
+
+/// The tolerance of [`snapped`], unless a declaration sets `rotation_tolerance`.
+pub const DEFAULT_ROTATION_TOLERANCE: f64 = 1e-15;
+
+/// A rotation's entries within `tolerance` of 0 or ±1 taken as exactly that.
+pub fn snapped_within(m: &[[f64; 3]; 3], tolerance: f64) -> [[f64; 3]; 3] {
     let snap = |x: f64| {
-        if x.abs() < 1e-15 {
+        if x.abs() < tolerance {
             0.0
-        } else if (x.abs() - 1.0).abs() < 1e-15 {
+        } else if (x.abs() - 1.0).abs() < tolerance {
             x.signum()
         } else {
             x

@@ -32,6 +32,7 @@ impl Parse for Mechanism {
             frame_selection: None,
             analysis: None,
             isa: None,
+            rotation_tolerance: None,
         };
         // `floating_base:` and `urdf_damping:`, each with the span of its keyword: they
         // apply to the `urdf:` file, so they are errors without one.
@@ -124,6 +125,9 @@ impl Parse for Mechanism {
                             };
                             mechanism.analysis = Some((kind, plane.span()));
                         }
+                        "rotation_tolerance" => {
+                            mechanism.rotation_tolerance = Some(parse_number(input)?)
+                        }
                         "isa" => {
                             let isa: Ident = input.parse()?;
                             mechanism.isa = Some(match isa.to_string().as_str() {
@@ -198,7 +202,7 @@ impl Parse for Mechanism {
 }
 
 /// The mechanism settings, `name: value;`, each given at most once.
-const SETTINGS: [&str; 10] = [
+const SETTINGS: [&str; 11] = [
     "gravity",
     "outputs",
     "frames",
@@ -209,6 +213,7 @@ const SETTINGS: [&str; 10] = [
     "urdf_damping",
     "force_analysis",
     "isa",
+    "rotation_tolerance",
 ];
 
 /// The value of a yes-or-no setting: `true` or `false`.

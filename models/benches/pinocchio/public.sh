@@ -4,6 +4,7 @@
 # would, timed beside Pinocchio on the same states.
 #
 #   bash models/benches/pinocchio/public.sh [--quick] [--isa] [--robots "go2 xarm7 g1"]
+#                                           [--rotation-tolerance 1e-10]
 #
 # Steps:
 #   1. `compare.sh --setup-only`: Pinocchio (pin) in ./venv and ./build/timing, as for the
@@ -23,6 +24,10 @@
 # --isa: after each robot's benchmark, its two kernel copies too, AVX2 + FMA against
 # baseline (SSE2), each dynamics output in paired rounds in one process (public_isa.rs,
 # an example of the robot's crate); the table goes to build/public/isa.md.
+# --rotation-tolerance T: each declaration also says `rotation_tolerance: T;`, which takes
+# the rotation entries within T of 0 or ±1 as exact (a quarter turn written 1.57079632679
+# leaves 4.9e-12, which the default keeps, as Pinocchio does; the outputs are still checked
+# against Pinocchio's within 1e-10).
 # Robots: go2 (Unitree quadruped, free base, 18 dof), xarm7 (7-dof arm), g1 (Unitree humanoid,
 # 29 joints, free base, 35 dof); by name also the 18-dof quadrupeds anymal (ANYmal C),
 # solo12, a1 and hyq. Nothing of example-robot-data is committed.
@@ -33,12 +38,14 @@ ROOT="$(cd "$HERE/../../.." && pwd)"
 ROBOTS="go2 xarm7 g1"
 QUICK=0
 ISA=0
+TOLERANCE=""
 ERD_VERSION="${ERD_VERSION:-6.0.0}"
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) QUICK=1 ;;
     --isa) ISA=1 ;;
     --robots) ROBOTS="$2"; shift ;;
+    --rotation-tolerance) TOLERANCE="$2"; shift ;;
     -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
     *) echo "public.sh: unknown argument $1 (try --help)" >&2; exit 2 ;;
   esac
@@ -140,7 +147,8 @@ dynamics_runtime::mechanism! {
     /// $robot (example-robot-data), joint damping and friction removed.
     pub struct Robot;
     urdf: "$(realpath "$urdf")";
-    floating_base: $floating;
+    floating_base: $floating;${TOLERANCE:+
+    rotation_tolerance: $TOLERANCE;}
     outputs: [$OUTPUTS];
 }
 EOF
@@ -191,10 +199,10 @@ done < "$OUT/robots.tsv"
 step "joining the results"
 CPU="$(LC_ALL=C lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1)"
 PYTHONPATH="$HERE" "$VENV/bin/python" - "$OUT" "$BASELINE" "$CPU" "$(nproc)" "$QUICK" "$(rustc --version)" \
-  "$(g++ --version | head -1)" <<'PYTHON' || fail "could not join the two sides' results"
+  "$(g++ --version | head -1)" "$TOLERANCE" <<'PYTHON' || fail "could not join the two sides' results"
 import os, re, sys
 
-out_dir, baseline, cpu, cores, quick, rustc, gxx = sys.argv[1:]
+out_dir, baseline, cpu, cores, quick, rustc, gxx, tolerance = sys.argv[1:]
 import results  # results.py beside this script (PYTHONPATH)
 # Pinocchio's call (the faster of its conventions where it has two) beside ours.
 ROWS = [("rnea", ["rnea"], "inverse_dynamics"),
@@ -274,6 +282,8 @@ text = [f"Machine: {cpu}, {cores} cores. 1-minute load average when each side st
                     for r, _, _ in robots) + ".",
         f"{header}; {gxx}. Generated code: {rustc}, baseline x86-64, criterion median of flat samples.",
         "QUICK RUN (--quick): short measurements, not for figures." if quick == "1" else "",
+        f"Every declaration says `rotation_tolerance: {tolerance};` (--rotation-tolerance)."
+        if tolerance else "",
         "",
         "Build of each robot's crate (dependencies prebuilt; the macro's expansion and rustc on the "
         "generated code, release profile, with the benchmark instantiating every function in f64): "
