@@ -239,6 +239,18 @@ fn documentation(model: &Model) -> Vec<String> {
             lines.push(format!(" `{}`:{}", load.name, load.docs.join(" ")));
         }
     }
+    if let Some(r) = model.rotation_residues() {
+        lines.push(String::new());
+        lines.push(" # Rotations".into());
+        lines.push(String::new());
+        lines.push(format!(
+            " {} entries of the joints' rotations lie within {:.1e} of 0 or ±1: angles written \
+             to a few decimals (such as 1.57079632679 for π/2). The functions keep them, as \
+             Pinocchio does, and pay for every term they multiply; `rotation_tolerance: {:e};` \
+             in the declaration takes them as exact, and the code is shorter.",
+            r.count, r.largest, r.tolerance
+        ));
+    }
     if !model.frames.is_empty() {
         lines.push(String::new());
         lines.push(" # Frames".into());

@@ -34,6 +34,7 @@ mod sym;
 mod syntax;
 mod urdf;
 
+pub use model::RotationResidues;
 pub use sym::OpCount;
 pub use syntax::Mechanism;
 pub use urdf::manifest_dir;
@@ -94,24 +95,11 @@ impl Compiled {
             .collect()
     }
 
-    /// The entries of the joints' rotations that lie within 1e-6 of 0 or ±1 without being
-    /// exactly that, as (how many, the largest distance): rounding left by angles written to
-    /// a few decimals (a quarter turn written 1.57079632679 leaves 4.9e-12). The expansion
-    /// keeps them, as Pinocchio does; a `rotation_tolerance` above the distance would make
-    /// them exact. `None` when there are none.
+    /// The entries of the joints' rotations that lie near 0 or ±1 without being exactly
+    /// that (see [`RotationResidues`]), `None` when there are none.
     #[must_use]
-    pub fn rotation_residues(&self) -> Option<(usize, f64)> {
-        let residue = |x: f64| x.abs().min((x.abs() - 1.0).abs());
-        let residues: Vec<f64> = self
-            .model
-            .declared_joints
-            .iter()
-            .flat_map(|j| j.rotation.iter().flatten())
-            .map(|&x| residue(x))
-            .filter(|&r| r > 0.0 && r < 1e-6)
-            .collect();
-        let largest = residues.iter().copied().fold(0.0_f64, f64::max);
-        (!residues.is_empty()).then_some((residues.len(), largest))
+    pub fn rotation_residues(&self) -> Option<RotationResidues> {
+        self.model.rotation_residues()
     }
 
     /// Evaluates the generated function `function` in `f64` without compiling it: the

@@ -139,14 +139,13 @@ fn op_table(compiled: &Compiled) -> String {
             f.name, f.ops, f.longest_chain
         );
     }
-    if let Some((count, largest)) = compiled.rotation_residues() {
-        // The power of ten above the largest residue.
-        let tolerance = 10f64.powf(largest.log10().floor() + 1.0).min(1e-6);
+    if let Some(r) = compiled.rotation_residues() {
         out += &format!(
-            "  note: {count} entries of the joints' rotations lie within {largest:.1e} of 0 or \
-             ±1 (angles written to a few decimals, such as 1.57079632679 for π/2); the \
-             expansion keeps them, as Pinocchio does; `rotation_tolerance: {tolerance:e};` \
-             makes them exact and the code shorter\n"
+            "  note: {} entries of the joints' rotations lie within {:.1e} of 0 or ±1 (angles \
+             written to a few decimals, such as 1.57079632679 for π/2); the expansion keeps \
+             them, as Pinocchio does; `rotation_tolerance: {:e};` makes them exact and the \
+             code shorter\n",
+            r.count, r.largest, r.tolerance
         );
     }
     out

@@ -305,8 +305,8 @@
 //! every term it multiplies costs operations; with the setting those terms fold (on
 //! HyQ's URDF the mass matrix drops from 1,368 to 756 operations). The price is the
 //! residue itself: positions and inertias differ from the file's by about that much.
-//! `dynamics-codegen file.rs --ops` counts such entries and names the tolerance that
-//! clears them.
+//! The generated type's docs (under "Rotations") and `dynamics-codegen file.rs --ops`
+//! count such entries and name the tolerance that clears them.
 //!
 //! ```rust
 //! use dynamics_runtime::mechanism;

@@ -601,6 +601,41 @@ pub struct Model {
     pub statics: Option<statics::Statics>,
 }
 
+/// Rotation entries that lie within 1e-6 of 0 or ±1 without being exactly that: rounding
+/// left by angles written to a few decimals (a quarter turn written 1.57079632679 leaves
+/// 4.9e-12). The expansion keeps them, as Pinocchio does; a `rotation_tolerance` above the
+/// largest would make them exact and the code shorter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RotationResidues {
+    /// How many entries of the joints' rotations.
+    pub count: usize,
+    /// The largest distance to 0 or ±1 among them.
+    pub largest: f64,
+    /// The power of ten above `largest` (at most 1e-6): a `rotation_tolerance` that clears
+    /// them all.
+    pub tolerance: f64,
+}
+
+impl Model {
+    /// The joints' [`RotationResidues`], `None` when there are none.
+    pub fn rotation_residues(&self) -> Option<RotationResidues> {
+        let residue = |x: f64| x.abs().min((x.abs() - 1.0).abs());
+        let residues: Vec<f64> = self
+            .declared_joints
+            .iter()
+            .flat_map(|j| j.rotation.iter().flatten())
+            .map(|&x| residue(x))
+            .filter(|&r| r > 0.0 && r < 1e-6)
+            .collect();
+        let largest = residues.iter().copied().fold(0.0_f64, f64::max);
+        (!residues.is_empty()).then(|| RotationResidues {
+            count: residues.len(),
+            largest,
+            tolerance: 10f64.powf(largest.log10().floor() + 1.0).min(1e-6),
+        })
+    }
+}
+
 /// Validates a parsed mechanism. Every rule runs; all errors are returned together.
 pub fn lower(mechanism: &syntax::Mechanism) -> Result<Model, syn::Error> {
     let mut diagnostics = Diagnostics::default();

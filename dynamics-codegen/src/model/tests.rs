@@ -124,7 +124,16 @@ fn a_rotation_tolerance_makes_written_quarter_turns_exact() {
     let kept = lower_tokens(declare(quote! {})).expect("valid");
     let cosine = kept.bodies[1].joint.rotation_in_parent[1][1];
     assert!(cosine != 0.0 && cosine.abs() < 1e-11, "{cosine}");
+    // What the CLI's `--ops` and the generated type's docs tell the user.
+    let residues = kept.rotation_residues().expect("the cosines' residues");
+    assert_eq!((residues.count, residues.tolerance), (2, 1e-11));
+    assert!(
+        (residues.largest - 4.9e-12).abs() < 1e-13,
+        "{}",
+        residues.largest
+    );
     let exact = lower_tokens(declare(quote! { rotation_tolerance: 1e-10; })).expect("valid");
+    assert_eq!(exact.rotation_residues(), None);
     assert_eq!(
         exact.bodies[1].joint.rotation_in_parent,
         [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]
