@@ -99,15 +99,21 @@ pub fn import(
     // sets `rotation_tolerance` (resolution reports a tolerance that is not a constant in
     // range; such a one is not used here).
     let tolerance = match mechanism.rotation_tolerance.as_ref().map(|n| &n.value) {
-        Some(syntax::NumberValue::Constant(t)) if (1e-15..=1e-6).contains(t) => Some(*t),
+        Some(syntax::NumberValue::Constant(t))
+            if (1e-15..=crate::model::MAX_ROTATION_TOLERANCE).contains(t) =>
+        {
+            Some(*t)
+        }
         _ => None,
     };
     for link in &robot.links {
         let [ixx, ixy, ixz, iyy, iyz, izz] = link.inertial.inertia;
         let inertia_in_inertial = [[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]];
-        let [roll, pitch, yaw] = link.inertial.origin.rpy;
+        let [roll, pitch, yaw] =
+            link.inertial.origin.rpy.map(|angle| {
+                tolerance.map_or(angle, |t| crate::model::value::snapped_angle(angle, t))
+            });
         let r = linear::rotation_from_rpy(roll, pitch, yaw);
-        let r = tolerance.map_or(r, |t| crate::model::value::snapped_within(&r, t));
         let inertia = linear::rotate(&r, &inertia_in_inertial);
         mechanism.bodies.push(Body {
             docs: vec![format!(" Link `{}` of `{written}`.", link.name)],

@@ -20,6 +20,7 @@ pub(crate) mod linear;
 mod resolve;
 mod resolved;
 mod rules;
+pub(crate) use rules::MAX_ROTATION_TOLERANCE;
 pub mod statics;
 mod tree;
 pub mod value;
@@ -601,7 +602,7 @@ pub struct Model {
     pub statics: Option<statics::Statics>,
 }
 
-/// Rotation entries that lie within 1e-6 of 0 or ±1 without being exactly that: rounding
+/// Rotation entries that lie within 1e-4 of 0 or ±1 without being exactly that: rounding
 /// left by angles written to a few decimals (a quarter turn written 1.57079632679 leaves
 /// 4.9e-12). The expansion keeps them, as Pinocchio does; a `rotation_tolerance` above the
 /// largest would make them exact and the code shorter.
@@ -611,7 +612,7 @@ pub struct RotationResidues {
     pub count: usize,
     /// The largest distance to 0 or ±1 among them.
     pub largest: f64,
-    /// The power of ten above `largest` (at most 1e-6): a `rotation_tolerance` that clears
+    /// The power of ten above `largest` (at most 1e-4): a `rotation_tolerance` that clears
     /// them all.
     pub tolerance: f64,
 }
@@ -625,13 +626,15 @@ impl Model {
             .iter()
             .flat_map(|j| j.rotation.iter().flatten())
             .map(|&x| residue(x))
-            .filter(|&r| r > 0.0 && r < 1e-6)
+            .filter(|&r| r > 0.0 && r < rules::MAX_ROTATION_TOLERANCE)
             .collect();
         let largest = residues.iter().copied().fold(0.0_f64, f64::max);
         (!residues.is_empty()).then(|| RotationResidues {
             count: residues.len(),
             largest,
-            tolerance: 10f64.powf(largest.log10().floor() + 1.0).min(1e-6),
+            tolerance: 10f64
+                .powf(largest.log10().floor() + 1.0)
+                .min(rules::MAX_ROTATION_TOLERANCE),
         })
     }
 }

@@ -99,12 +99,21 @@ impl Resolver<'_> {
     fn rotation(&mut self, rotation: &Rotation) -> [[f64; 3]; 3] {
         match rotation {
             Rotation::Rpy(angles, _) => {
-                let [r, p, y] = std::array::from_fn(|i| self.constant(&angles[i], "a rotation"));
-                rows(&linear::rotation_from_rpy(r, p, y), self.rotation_tolerance)
+                let [r, p, y] = std::array::from_fn(|i| {
+                    let angle = self.constant(&angles[i], "a rotation");
+                    value::snapped_angle(angle, self.rotation_tolerance)
+                });
+                rows(
+                    &linear::rotation_from_rpy(r, p, y),
+                    value::DEFAULT_ROTATION_TOLERANCE,
+                )
             }
             Rotation::AxisAngle(axis, angle, _) => {
                 let a = self.constant_vector(axis, "a rotation");
-                let angle = self.constant(angle, "a rotation");
+                let angle = value::snapped_angle(
+                    self.constant(angle, "a rotation"),
+                    self.rotation_tolerance,
+                );
                 let length = linear::norm(&a);
                 if length == 0.0 || !length.is_finite() {
                     rules::report_zero_rotation_axis(rotation.span(), self.diagnostics);
@@ -112,7 +121,7 @@ impl Resolver<'_> {
                 }
                 rows(
                     &linear::rotation_from_axis_angle(&linear::normalize(&a), angle),
-                    self.rotation_tolerance,
+                    value::DEFAULT_ROTATION_TOLERANCE,
                 )
             }
             Rotation::Matrix(m) => {
@@ -164,11 +173,14 @@ impl Resolver<'_> {
             None => Value::constant(0.0),
         };
         let (a, d) = (length(&placement.a), length(&placement.d));
-        let mut angle = |n: &Option<Number>| n.as_ref().map_or(0.0, |n| self.constant(n, what));
+        let tolerance = self.rotation_tolerance;
+        let mut angle = |n: &Option<Number>| {
+            let angle = n.as_ref().map_or(0.0, |n| self.constant(n, what));
+            value::snapped_angle(angle, tolerance)
+        };
         let (alpha, theta) = (angle(&placement.alpha), angle(&placement.theta));
         let row = dh::Row { a, alpha, d, theta };
-        let tolerance = self.rotation_tolerance;
-        let snap = move |m: &linear::Matrix3| rows(m, tolerance);
+        let snap = |m: &linear::Matrix3| rows(m, value::DEFAULT_ROTATION_TOLERANCE);
         (dh::place(placement.convention, row, &snap), placement.span)
     }
 
@@ -271,7 +283,9 @@ const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.
 /// (Pinocchio gives the Panda's quarter turns as 2.2e-16 and 1): a rotation by 1e-15 rad is
 /// no rotation, and keeping the residue costs the Panda's mass matrix 80 % more operations.
 /// A URDF that writes π/2 as 1.57079632679 leaves 4.9e-12: `rotation_tolerance: 1e-10;`
-/// takes that as exact too.
+/// takes that as exact too (for `rpy` and axis-angle by taking the angle as the quarter
+/// turn, [`value::snapped_angle`], so that the rotation stays orthonormal; for a matrix
+/// entry by entry).
 fn rows(m: &linear::Matrix3, tolerance: f64) -> [[f64; 3]; 3] {
     value::snapped_within(m, tolerance)
 }

@@ -29,6 +29,8 @@ use std::collections::{HashMap, HashSet};
 const INERTIA_TOLERANCE: f64 = 1e-9;
 /// Absolute tolerance of |RᵀR − 1|.
 const ROTATION_TOLERANCE: f64 = 1e-6;
+/// The widest `rotation_tolerance` accepted.
+pub(crate) const MAX_ROTATION_TOLERANCE: f64 = 1e-4;
 /// The name of the fixed world frame.
 pub(crate) const GROUND: &str = "ground";
 
@@ -155,21 +157,23 @@ pub(crate) fn report_parameter_not_allowed(
     );
 }
 
-/// Rule: a `rotation_tolerance` lies between 1e-15 (the default) and 1e-6. Wider, it
-/// would make a rotation's small entries zero while its others stay, which is no rotation.
+/// Rule: a `rotation_tolerance` lies between 1e-15 (the default) and 1e-4 (an angle
+/// written to four decimals, 1.5708 for π/2, is 3.7e-6 off). Wider, it would take angles
+/// that are meant as such for quarter turns.
 pub(crate) fn rotation_tolerance_is_reasonable(
     tolerance: f64,
     span: SpanRange,
     d: &mut Diagnostics,
 ) -> bool {
-    let reasonable = (1e-15..=1e-6).contains(&tolerance);
+    let reasonable = (1e-15..=MAX_ROTATION_TOLERANCE).contains(&tolerance);
     if !reasonable {
         d.error(
             span,
             format!(
                 "`rotation_tolerance` is {tolerance:e}; it must lie between 1e-15 (the default) \
-                 and 1e-6: rotation entries within it of 0 or ±1 are taken as exactly that \
-                 (1e-10 takes a quarter turn written 1.57079632679 as exact)"
+                 and 1e-4: angles within it of a quarter turn, and a matrix's entries within \
+                 it of 0 or ±1, are taken as exactly that (1e-10 takes a quarter turn written \
+                 1.57079632679 as exact, 1e-5 one written 1.5708)"
             ),
         );
     }

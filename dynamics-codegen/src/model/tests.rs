@@ -142,10 +142,22 @@ fn a_rotation_tolerance_makes_written_quarter_turns_exact() {
         let e = errors(declare(quote! { rotation_tolerance: #bad; }));
         assert!(
             e.iter()
-                .any(|m| m.contains("must lie between 1e-15 (the default) and 1e-6")),
+                .any(|m| m.contains("must lie between 1e-15 (the default) and 1e-4")),
             "{e:?}"
         );
     }
+    // Written to four decimals (the xarm7's 1.5708, 3.7e-6 off) beside a general angle:
+    // the angle is taken as the quarter turn, so the rotation stays orthonormal.
+    let four_decimals = lower_tokens(quote! {
+        struct Twisted;
+        rotation_tolerance: 1e-5;
+        body a { mass: 1.0, com: [0.1, 0.0, 0.0], inertia: [[0.01, 0.0, 0.0], [0.0, 0.02, 0.0], [0.0, 0.0, 0.03]] }
+        joint j: revolute(ground -> a) { axis: z, rotation: rpy(1.5708, 0.0, 0.3) }
+    })
+    .expect("valid");
+    let r = four_decimals.declared_joints[0].rotation;
+    let (s, c) = 0.3_f64.sin_cos();
+    assert_eq!(r, [[c, 0.0, s], [s, 0.0, -c], [0.0, 1.0, 0.0]]);
     let e = errors(declare(
         quote! { parameters: [t = 1e-10]; rotation_tolerance: t; },
     ));

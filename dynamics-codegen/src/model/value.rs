@@ -116,6 +116,23 @@ pub fn snapped(m: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
 /// The tolerance of [`snapped`], unless a declaration sets `rotation_tolerance`.
 pub const DEFAULT_ROTATION_TOLERANCE: f64 = 1e-15;
 
+/// An angle within `tolerance` of a multiple of a quarter turn taken as exactly that
+/// multiple: how `rotation_tolerance` reads `rpy` and axis-angle rotations, so that they
+/// stay orthonormal (a URDF's 1.57079632679 or 1.5708 for π/2). The default tolerance
+/// changes no angle.
+pub fn snapped_angle(angle: f64, tolerance: f64) -> f64 {
+    if tolerance <= DEFAULT_ROTATION_TOLERANCE {
+        return angle;
+    }
+    let quarters = (angle / std::f64::consts::FRAC_PI_2).round();
+    let nearest = quarters * std::f64::consts::FRAC_PI_2;
+    if (angle - nearest).abs() < tolerance {
+        nearest
+    } else {
+        angle
+    }
+}
+
 /// A rotation's entries within `tolerance` of 0 or ±1 taken as exactly that.
 pub fn snapped_within(m: &[[f64; 3]; 3], tolerance: f64) -> [[f64; 3]; 3] {
     let snap = |x: f64| {
