@@ -49,15 +49,9 @@ pub(crate) fn build(
         .enumerate()
         .map(|(i, b)| (b.name.text.as_str(), i))
         .collect();
-    let order = depth_first_order(resolved, &body_index);
+    let children_of = child_joints(resolved);
+    let order = depth_first_order(resolved, &body_index, &children_of);
     let nominal = resolved.nominal_parameters();
-    let mut children_of: HashMap<&str, Vec<usize>> = HashMap::new();
-    for (j, joint) in resolved.joints.iter().enumerate() {
-        children_of
-            .entry(joint.parent.text.as_str())
-            .or_default()
-            .push(j);
-    }
     // The force analysis fixes its unknowns' directions in the tree bodies' frames, as
     // declared: its bodies keep them.
     let turns_allowed = !(resolved.outputs.force_analysis
@@ -452,8 +446,9 @@ fn unit(axis: [f64; 3]) -> [f64; 3] {
     linear::normalize(&axis)
 }
 
-/// Joint indices in depth-first order from the ground, children in declaration order.
-fn depth_first_order(resolved: &Resolved, body_index: &HashMap<&str, usize>) -> Vec<usize> {
+/// Each body's (or the ground's) joints to its children, by the body's name, in
+/// declaration order.
+fn child_joints(resolved: &Resolved) -> HashMap<&str, Vec<usize>> {
     let mut children: HashMap<&str, Vec<usize>> = HashMap::new();
     for (j, joint) in resolved.joints.iter().enumerate() {
         children
@@ -461,6 +456,15 @@ fn depth_first_order(resolved: &Resolved, body_index: &HashMap<&str, usize>) -> 
             .or_default()
             .push(j);
     }
+    children
+}
+
+/// Joint indices in depth-first order from the ground, children in declaration order.
+fn depth_first_order(
+    resolved: &Resolved,
+    body_index: &HashMap<&str, usize>,
+    children: &HashMap<&str, Vec<usize>>,
+) -> Vec<usize> {
     let mut order = Vec::new();
     let mut stack: Vec<usize> = children
         .get(GROUND)
