@@ -16,11 +16,12 @@
 //! axis-aligned description would.
 //!
 //! The angle is chosen by counting entries: a placement entry costs 2 when general, 1 when
-//! ±1 and 0 when zero; a child's translation entry 1 when nonzero. Candidates are the angles
-//! that zero one entry of the joint's placement or of a child's placement (each entry is
-//! a + b cos φ + c sin φ); a child that turns too is scored at its own best angle. The turn
-//! is taken only when it lowers the count, so a description that is already sparse keeps
-//! its frames.
+//! ±1 and 0 when zero; a translation entry (a child's origin, the body's first moment
+//! h = m c) 1 when nonzero; the body's I_P 1 per nonzero diagonal entry and 2 per nonzero
+//! pair off it. Candidates are the angles that zero one entry of the joint's placement, of
+//! h or of a child's placement or origin (each entry is a + b cos φ + c sin φ); a child
+//! that turns too is scored at its own best angle. The turn is taken only when it lowers
+//! the count, so a description that is already sparse keeps its frames.
 
 use super::value::snapped;
 
