@@ -23,13 +23,14 @@
 //! that turns too is scored at its own best angle. The turn is taken only when it lowers
 //! the count, so a description that is already sparse keeps its frames.
 
+use super::linear::{self, Matrix3, Vector3, IDENTITY};
 use super::value::snapped;
 
 /// A moving joint below a body (directly, or through bodies welded to it), as the body's
 /// frame sees it before any turn.
 pub(crate) struct ChildPlacement {
     /// The child joint frame's rotation in the body frame (rows).
-    pub rotation_in_body: [[f64; 3]; 3],
+    pub rotation_in_body: Matrix3,
     /// Its origin in the body frame (at the parameters' nominal values).
     pub origin_in_body: [f64; 3],
     /// The child joint's axis when it may turn too (revolute or prismatic).
@@ -42,37 +43,38 @@ pub(crate) struct MassProperties {
     /// h = Σ m c.
     pub first_moment: [f64; 3],
     /// I_P = Σ (I_G + m (|c|² 1 − c cᵀ)).
-    pub inertia_about_origin: [[f64; 3]; 3],
+    pub inertia_about_origin: Matrix3,
 }
 
 /// Rot(s, φ) for the best angle φ ≠ 0, or `None` when no turn lowers the cost of the
 /// placement `rotation_in_parent`, the children's placements and the body's inertia.
 pub(crate) fn best_turn(
     axis: [f64; 3],
-    rotation_in_parent: &[[f64; 3]; 3],
+    rotation_in_parent: &Matrix3,
     children: &[ChildPlacement],
     body: &MassProperties,
-) -> Option<[[f64; 3]; 3]> {
-    let cost = |turn: &[[f64; 3]; 3]| -> usize {
-        let back = transpose(turn);
-        let inertia = product(&back, &product(&body.inertia_about_origin, turn));
-        let own = entries_cost(&snapped(&product(rotation_in_parent, turn)))
-            + translation_cost(&rotate(&back, &body.first_moment))
+) -> Option<Matrix3> {
+    let cost = |turn: &Matrix3| -> usize {
+        let back = linear::transpose(turn);
+        let inertia = linear::mul(&back, &linear::mul(&body.inertia_about_origin, turn));
+        let own = entries_cost(&snapped(&linear::mul(rotation_in_parent, turn)))
+            + translation_cost(&linear::mul_vector(&back, &body.first_moment))
             + inertia_cost(&inertia);
         let below: usize = children
             .iter()
             .map(|c| {
-                let rotation = product(&transpose(turn), &c.rotation_in_body);
-                let origin = rotate(&transpose(turn), &c.origin_in_body);
+                let rotation = linear::mul(&back, &c.rotation_in_body);
+                let origin = linear::mul_vector(&back, &c.origin_in_body);
                 child_rotation_cost(&rotation, c.axis) + translation_cost(&origin)
             })
             .sum();
         own + below
     };
     let mut candidates = placement_angles(axis, rotation_in_parent);
-    candidates.extend(child_angles(axis, &IDENTITY, &body.first_moment));
+    candidates.extend(vector_angles(axis, &body.first_moment));
     for c in children {
-        candidates.extend(child_angles(axis, &c.rotation_in_body, &c.origin_in_body));
+        candidates.extend(child_angles(axis, &c.rotation_in_body));
+        candidates.extend(vector_angles(axis, &c.origin_in_body));
     }
     let mut best = (cost(&IDENTITY), None);
     for angle in distinct(candidates) {
@@ -85,14 +87,11 @@ pub(crate) fn best_turn(
     best.1
 }
 
-/// A 3 × 3 matrix by rows.
-type Rotation = [[f64; 3]; 3];
-
-const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-
 /// Rot(s, φ) for a unit axis s: the explicit matrix for a coordinate axis (so that the
-/// entry on s is exactly 1), Rodrigues' formula otherwise.
-pub(crate) fn rotation_about(axis: [f64; 3], angle: f64) -> [[f64; 3]; 3] {
+/// entry on s is exactly 1), Rodrigues' formula otherwise. The same rotation as
+/// `linear::rotation_from_axis_angle`, rounded differently about a general axis; the turns
+/// were chosen, and the generated code's constants computed, with this one.
+fn rotation_about(axis: Vector3, angle: f64) -> Matrix3 {
     let (sin, cos) = angle.sin_cos();
     if axis.iter().filter(|a| **a != 0.0).count() == 1 {
         let k = axis.iter().position(|a| *a != 0.0).unwrap_or(2);
@@ -115,19 +114,22 @@ pub(crate) fn rotation_about(axis: [f64; 3], angle: f64) -> [[f64; 3]; 3] {
 }
 
 /// The cost of a child's placement, at the child's own best turn when it may turn.
-fn child_rotation_cost(rotation: &[[f64; 3]; 3], axis: Option<[f64; 3]>) -> usize {
+fn child_rotation_cost(rotation: &Matrix3, axis: Option<[f64; 3]>) -> usize {
     let fixed = entries_cost(&snapped(rotation));
     let Some(axis) = axis else {
         return fixed;
     };
     distinct(placement_angles(axis, rotation))
         .into_iter()
-        .map(|angle| entries_cost(&snapped(&product(rotation, &rotation_about(axis, angle)))))
+        .map(|angle| {
+            let turn = rotation_about(axis, angle);
+            entries_cost(&snapped(&linear::mul(rotation, &turn)))
+        })
         .fold(fixed, usize::min)
 }
 
 /// 2 per general entry, 1 per ±1, 0 per zero.
-fn entries_cost(m: &[[f64; 3]; 3]) -> usize {
+fn entries_cost(m: &Matrix3) -> usize {
     m.iter()
         .flatten()
         .map(|&x| match x {
@@ -149,7 +151,7 @@ fn translation_cost(t: &[f64; 3]) -> usize {
 
 /// 1 per nonzero diagonal entry, 2 per nonzero pair off the diagonal (relative to the
 /// largest, as `value::snapped_matrix` drops them).
-fn inertia_cost(m: &[[f64; 3]; 3]) -> usize {
+fn inertia_cost(m: &Matrix3) -> usize {
     let scale = m.iter().flatten().fold(0.0_f64, |a, x| a.max(x.abs()));
     let nonzero = |x: f64| x.abs() >= 1e-14 * scale && x != 0.0;
     (0..3)
@@ -160,39 +162,42 @@ fn inertia_cost(m: &[[f64; 3]; 3]) -> usize {
 }
 
 /// The angles that zero an entry of R Rot(s, φ) = R s sᵀ + cos φ R (1 − s sᵀ) + sin φ R ŝ.
-fn placement_angles(axis: [f64; 3], rotation: &[[f64; 3]; 3]) -> Vec<f64> {
+fn placement_angles(axis: [f64; 3], rotation: &Matrix3) -> Vec<f64> {
     let (along, across, cross) = split(axis);
-    let a = product(rotation, &along);
-    let b = product(rotation, &across);
-    let c = product(rotation, &cross);
+    let a = linear::mul(rotation, &along);
+    let b = linear::mul(rotation, &across);
+    let c = linear::mul(rotation, &cross);
     (0..9)
         .flat_map(|k| zeroing_angles(a[k / 3][k % 3], b[k / 3][k % 3], c[k / 3][k % 3]))
         .collect()
 }
 
-/// The angles that zero an entry of Rot(s, φ)ᵀ S = s sᵀ S + cos φ (1 − s sᵀ) S − sin φ ŝ S,
-/// or of Rot(s, φ)ᵀ t.
-fn child_angles(axis: [f64; 3], rotation: &[[f64; 3]; 3], origin: &[f64; 3]) -> Vec<f64> {
+/// The angles that zero an entry of Rot(s, φ)ᵀ S = s sᵀ S + cos φ (1 − s sᵀ) S − sin φ ŝ S.
+fn child_angles(axis: [f64; 3], rotation: &Matrix3) -> Vec<f64> {
     let (along, across, cross) = split(axis);
-    let a = product(&along, rotation);
-    let b = product(&across, rotation);
-    let c = product(&cross, rotation);
-    let (ta, tb, tc) = (
-        rotate(&along, origin),
-        rotate(&across, origin),
-        rotate(&cross, origin),
-    );
-    let mut angles: Vec<f64> = (0..9)
+    let a = linear::mul(&along, rotation);
+    let b = linear::mul(&across, rotation);
+    let c = linear::mul(&cross, rotation);
+    (0..9)
         .flat_map(|k| zeroing_angles(a[k / 3][k % 3], b[k / 3][k % 3], -c[k / 3][k % 3]))
-        .collect();
-    angles.extend((0..3).flat_map(|k| zeroing_angles(ta[k], tb[k], -tc[k])));
-    angles
+        .collect()
+}
+
+/// The angles that zero an entry of Rot(s, φ)ᵀ t, the same way.
+fn vector_angles(axis: [f64; 3], t: &Vector3) -> Vec<f64> {
+    let (along, across, cross) = split(axis);
+    let a = linear::mul_vector(&along, t);
+    let b = linear::mul_vector(&across, t);
+    let c = linear::mul_vector(&cross, t);
+    (0..3)
+        .flat_map(|k| zeroing_angles(a[k], b[k], -c[k]))
+        .collect()
 }
 
 /// s sᵀ, 1 − s sᵀ and ŝ: Rot(s, φ) = s sᵀ + cos φ (1 − s sᵀ) + sin φ ŝ.
-fn split(s: [f64; 3]) -> (Rotation, Rotation, Rotation) {
-    let along: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| s[i] * s[j]));
-    let across = std::array::from_fn(|i| std::array::from_fn(|j| IDENTITY[i][j] - along[i][j]));
+fn split(s: [f64; 3]) -> (Matrix3, Matrix3, Matrix3) {
+    let along = linear::outer(&s, &s);
+    let across = linear::sub(&IDENTITY, &along);
     let cross = [[0.0, -s[2], s[1]], [s[2], 0.0, -s[0]], [-s[1], s[0], 0.0]];
     (along, across, cross)
 }
@@ -231,38 +236,26 @@ fn distinct(angles: Vec<f64>) -> Vec<f64> {
     kept
 }
 
-fn product(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
-}
-
-fn transpose(m: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    std::array::from_fn(|i| std::array::from_fn(|j| m[j][i]))
-}
-
-fn rotate(m: &[[f64; 3]; 3], v: &[f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|i| (0..3).map(|k| m[i][k] * v[k]).sum())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn rx(angle: f64) -> [[f64; 3]; 3] {
+    fn rx(angle: f64) -> Matrix3 {
         rotation_about([1.0, 0.0, 0.0], angle)
     }
 
-    fn rz(angle: f64) -> [[f64; 3]; 3] {
+    fn rz(angle: f64) -> Matrix3 {
         rotation_about([0.0, 0.0, 1.0], angle)
     }
 
     /// A unit mass at c with I_G = 0.01 · 1.
     fn point_mass(c: [f64; 3]) -> MassProperties {
-        let c2: f64 = c.iter().map(|x| x * x).sum();
         MassProperties {
             first_moment: c,
-            inertia_about_origin: std::array::from_fn(|i| {
-                std::array::from_fn(|j| IDENTITY[i][j] * (0.01 + c2) - c[i] * c[j])
-            }),
+            inertia_about_origin: linear::add(
+                &linear::scale(&IDENTITY, 0.01),
+                &linear::parallel_axis(&c),
+            ),
         }
     }
 
@@ -271,8 +264,8 @@ mod tests {
         // ANYmal's hip: placed by Rx(150°), its child by Rx(−150°) Rz(90°).
         let turn = 150_f64.to_radians();
         let child = ChildPlacement {
-            rotation_in_body: product(&rx(-turn), &rz(std::f64::consts::FRAC_PI_2)),
-            origin_in_body: rotate(&rx(-turn), &[0.0599, 0.08381, 0.0]),
+            rotation_in_body: linear::mul(&rx(-turn), &rz(std::f64::consts::FRAC_PI_2)),
+            origin_in_body: linear::mul_vector(&rx(-turn), &[0.0599, 0.08381, 0.0]),
             axis: Some([1.0, 0.0, 0.0]),
         };
         let chosen = best_turn(
@@ -287,11 +280,11 @@ mod tests {
         // Both placements become signed permutations: Rx(150°) Rx(−150°) = 1 (or a half
         // turn about x, which costs the same), and the child's Rz(90°).
         let signed_permutation =
-            |m: [[f64; 3]; 3]| m.iter().flatten().all(|&x| x == 0.0 || x.abs() == 1.0);
-        assert!(signed_permutation(snapped(&product(&rx(turn), &t))));
-        let child_rotation = snapped(&product(
-            &transpose(&t),
-            &product(&rx(-turn), &rz(std::f64::consts::FRAC_PI_2)),
+            |m: Matrix3| m.iter().flatten().all(|&x| x == 0.0 || x.abs() == 1.0);
+        assert!(signed_permutation(snapped(&linear::mul(&rx(turn), &t))));
+        let child_rotation = snapped(&linear::mul(
+            &linear::transpose(&t),
+            &linear::mul(&rx(-turn), &rz(std::f64::consts::FRAC_PI_2)),
         ));
         assert!(signed_permutation(child_rotation));
         assert_eq!(entries_cost(&child_rotation), 3);
@@ -338,10 +331,10 @@ mod tests {
         let s = [2.0_f64.sqrt() / 2.0, 0.0, 2.0_f64.sqrt() / 2.0];
         let r = rotation_about(s, 0.7);
         let back = rotation_about(s, -0.7);
-        let m = snapped(&product(&r, &back));
+        let m = snapped(&linear::mul(&r, &back));
         assert_eq!(m, IDENTITY);
         // The axis is fixed by the turn.
-        let turned = rotate(&r, &s);
+        let turned = linear::mul_vector(&r, &s);
         assert!((0..3).all(|k| (turned[k] - s[k]).abs() < 1e-15));
     }
 }

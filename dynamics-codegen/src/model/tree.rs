@@ -396,26 +396,24 @@ fn turn_inputs(
     let mut below = Vec::new();
     let mut mass = frame_turns::MassProperties {
         first_moment: [0.0; 3],
-        inertia_about_origin: [[0.0; 3]; 3],
+        inertia_about_origin: linear::ZERO,
     };
     let mut stack = vec![(body, placement)];
     while let Some((body, (rotation, translation))) = stack.pop() {
         if let Some(declared) = body_index.get(body).map(|&b| &resolved.bodies[b]) {
+            // h += m c, I_P += I_G + m (|c|² 1 − c cᵀ), c and I_G in the body's frame.
             let m = declared.mass.nominal(nominal);
             let c = linear::add_vectors(
                 &linear::mul_vector(&rotation, &nominal3(&declared.com, nominal)),
                 &translation,
             );
-            let i_g =
-                value::nominal33(&value::rotate_matrix(&rotation, &declared.inertia), nominal);
-            let c2 = linear::norm_squared(&c);
-            for i in 0..3 {
-                mass.first_moment[i] += m * c[i];
-                for j in 0..3 {
-                    let shift = if i == j { c2 } else { 0.0 } - c[i] * c[j];
-                    mass.inertia_about_origin[i][j] += i_g[i][j] + m * shift;
-                }
-            }
+            let i_g = linear::rotate(&rotation, &value::nominal33(&declared.inertia, nominal));
+            mass.first_moment =
+                linear::add_vectors(&mass.first_moment, &linear::scale_vector(&c, m));
+            mass.inertia_about_origin = linear::add(
+                &mass.inertia_about_origin,
+                &linear::add(&i_g, &linear::scale(&linear::parallel_axis(&c), m)),
+            );
         }
         for &k in children_of.get(body).into_iter().flatten() {
             let joint = &resolved.joints[k];

@@ -100,9 +100,7 @@ pub fn rotate(r: &[[f64; 3]; 3], v: &Vec3) -> Vec3 {
 /// and how a modified DH row composes Rx(α) Rz(θ) (the same arithmetic, so that a table
 /// declared in either convention gives the same numbers).
 pub fn rotation_product(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    snapped(&std::array::from_fn(|i| {
-        std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum())
-    }))
+    snapped(&super::linear::mul(a, b))
 }
 
 /// A rotation's entries within 1e-15 of 0 or ±1 taken as exactly that. `rpy = "0 0 1.5708"`
