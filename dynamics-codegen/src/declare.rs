@@ -243,13 +243,7 @@ fn documentation(model: &Model) -> Vec<String> {
         lines.push(String::new());
         lines.push(" # Rotations".into());
         lines.push(String::new());
-        lines.push(format!(
-            " {} entries of the joints' rotations lie within {:.1e} of 0 or ±1: angles written \
-             to a few decimals (such as 1.57079632679 for π/2). The functions keep them, as \
-             Pinocchio does, and pay for every term they multiply; `rotation_tolerance: {:e};` \
-             in the declaration takes them as exact, and the code is shorter.",
-            r.count, r.largest, r.tolerance
-        ));
+        lines.push(format!(" {}", r.advice()));
     }
     if !model.frames.is_empty() {
         lines.push(String::new());

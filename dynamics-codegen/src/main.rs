@@ -140,13 +140,7 @@ fn op_table(compiled: &Compiled) -> String {
         );
     }
     if let Some(r) = compiled.rotation_residues() {
-        out += &format!(
-            "  note: {} entries of the joints' rotations lie within {:.1e} of 0 or ±1 (angles \
-             written to a few decimals, such as 1.57079632679 for π/2); the expansion keeps \
-             them, as Pinocchio does; `rotation_tolerance: {:e};` makes them exact and the \
-             code shorter\n",
-            r.count, r.largest, r.tolerance
-        );
+        out += &format!("  note: {}\n", r.advice());
     }
     out
 }

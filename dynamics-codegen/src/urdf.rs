@@ -96,14 +96,10 @@ pub fn import(
         span,
     };
     // The inertial frames' rotations are cleaned as the joints' are when the declaration
-    // sets `rotation_tolerance` (resolution reports a tolerance that is not a constant in
-    // range; such a one is not used here).
+    // sets `rotation_tolerance` (resolution reports a tolerance that is not a constant, or
+    // out of range, and the compilation stops there).
     let tolerance = match mechanism.rotation_tolerance.as_ref().map(|n| &n.value) {
-        Some(syntax::NumberValue::Constant(t))
-            if (1e-15..=crate::model::MAX_ROTATION_TOLERANCE).contains(t) =>
-        {
-            Some(*t)
-        }
+        Some(syntax::NumberValue::Constant(t)) => Some(*t),
         _ => None,
     };
     for link in &robot.links {

@@ -73,17 +73,14 @@ pub(crate) struct Placed {
     pub child: Option<Pose>,
 }
 
-/// Resolution's clean-up of a rotation's entries (those near 0 or ±1 made exact).
-pub(crate) type Snap = dyn Fn(&[[f64; 3]; 3]) -> [[f64; 3]; 3];
-
-/// Rx(angle), by rows, with `snap` applied (entries near 0 or ±1 made exact).
-fn rotation_x(angle: f64, snap: &Snap) -> [[f64; 3]; 3] {
+/// Rx(angle), by rows, with `snap` applied (entries within 1e-15 of 0 or ±1 made exact).
+fn rotation_x(angle: f64, snap: fn(&[[f64; 3]; 3]) -> [[f64; 3]; 3]) -> [[f64; 3]; 3] {
     let (s, c) = angle.sin_cos();
     snap(&[[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
 }
 
 /// Rz(angle), by rows, with `snap` applied.
-fn rotation_z(angle: f64, snap: &Snap) -> [[f64; 3]; 3] {
+fn rotation_z(angle: f64, snap: fn(&[[f64; 3]; 3]) -> [[f64; 3]; 3]) -> [[f64; 3]; 3] {
     let (s, c) = angle.sin_cos();
     snap(&[[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 }
@@ -98,7 +95,11 @@ fn zero() -> Value {
 /// The modified placement is composed with the same arithmetic as the tree composes a
 /// standard row's joint with its parent's C, so that a table declared both ways gives the
 /// same numbers, bit for bit.
-pub(crate) fn place(convention: DhConvention, row: Row, snap: &Snap) -> Placed {
+pub(crate) fn place(
+    convention: DhConvention,
+    row: Row,
+    snap: fn(&[[f64; 3]; 3]) -> [[f64; 3]; 3],
+) -> Placed {
     let rx = rotation_x(row.alpha, snap);
     let rz = rotation_z(row.theta, snap);
     let along_x: Vec3 = [row.a, zero(), zero()];
@@ -232,7 +233,7 @@ mod tests {
         let (a, alpha, d, theta) = (0.4318, -0.7, 0.15005, 0.3);
         let q = 1.1;
         // Standard: Rz(θ + q) Tz(d) Tx(a) Rx(α), and Rz(θ) Tz(d + q) Tx(a) Rx(α).
-        let standard = place(DhConvention::Standard, row(a, alpha, d, theta), &no_snap);
+        let standard = place(DhConvention::Standard, row(a, alpha, d, theta), no_snap);
         let expected = product(&[
             rz(theta + q),
             translation(0.0, 0.0, d),
@@ -252,7 +253,7 @@ mod tests {
             "standard, prismatic",
         );
         // Modified: Rx(α) Tx(a) Rz(θ + q) Tz(d), and Rx(α) Tx(a) Rz(θ) Tz(d + q).
-        let modified = place(DhConvention::Modified, row(a, alpha, d, theta), &no_snap);
+        let modified = place(DhConvention::Modified, row(a, alpha, d, theta), no_snap);
         assert!(modified.child.is_none());
         let expected = product(&[
             rx(alpha),
@@ -288,7 +289,7 @@ mod tests {
         let mut standard = identity4();
         let mut modified = identity4();
         for (i, &(a, alpha, d, theta)) in table.iter().enumerate() {
-            let s = place(DhConvention::Standard, row(a, alpha, d, theta), &no_snap);
+            let s = place(DhConvention::Standard, row(a, alpha, d, theta), no_snap);
             // Standard: the parent's declared frame is frame i − 1, so the product so far
             // (ending in the parent's C) is that frame in the world.
             standard = mul4(&standard, &chained(&s, &rz(q[i])));
@@ -300,7 +301,7 @@ mod tests {
             let m = place(
                 DhConvention::Modified,
                 row(a_prev, alpha_prev, d, theta),
-                &no_snap,
+                no_snap,
             );
             modified = mul4(&modified, &chained(&m, &rz(q[i])));
             // Craig's frame i is the standard frame i without its C = Tx(a_i) Rx(α_i).
@@ -312,9 +313,9 @@ mod tests {
     /// A standard row with a = 0 and α = 0 places the child's frame at the joint frame.
     #[test]
     fn a_row_without_length_and_twist_needs_no_child_frame() {
-        let placed = place(DhConvention::Standard, row(0.0, 0.0, 0.3, 0.2), &no_snap);
+        let placed = place(DhConvention::Standard, row(0.0, 0.0, 0.3, 0.2), no_snap);
         assert!(placed.child.is_none());
-        let placed = place(DhConvention::Standard, row(0.0, 1e-3, 0.3, 0.2), &no_snap);
+        let placed = place(DhConvention::Standard, row(0.0, 1e-3, 0.3, 0.2), no_snap);
         assert!(placed.child.is_some());
     }
 }

@@ -103,10 +103,7 @@ impl Resolver<'_> {
                     let angle = self.constant(&angles[i], "a rotation");
                     value::snapped_angle(angle, self.rotation_tolerance)
                 });
-                rows(
-                    &linear::rotation_from_rpy(r, p, y),
-                    value::DEFAULT_ROTATION_TOLERANCE,
-                )
+                rows(&linear::rotation_from_rpy(r, p, y))
             }
             Rotation::AxisAngle(axis, angle, _) => {
                 let a = self.constant_vector(axis, "a rotation");
@@ -119,16 +116,17 @@ impl Resolver<'_> {
                     rules::report_zero_rotation_axis(rotation.span(), self.diagnostics);
                     return IDENTITY;
                 }
-                rows(
-                    &linear::rotation_from_axis_angle(&linear::normalize(&a), angle),
-                    value::DEFAULT_ROTATION_TOLERANCE,
-                )
+                rows(&linear::rotation_from_axis_angle(
+                    &linear::normalize(&a),
+                    angle,
+                ))
             }
+            // Entry by entry: the declaration's tolerance (1e-15 by default).
             Rotation::Matrix(m) => {
                 let entries = std::array::from_fn(|i| {
                     std::array::from_fn(|j| self.constant(&m.rows[i][j], "a rotation"))
                 });
-                rows(&entries, self.rotation_tolerance)
+                value::snapped_within(&entries, self.rotation_tolerance)
             }
         }
     }
@@ -180,8 +178,7 @@ impl Resolver<'_> {
         };
         let (alpha, theta) = (angle(&placement.alpha), angle(&placement.theta));
         let row = dh::Row { a, alpha, d, theta };
-        let snap = |m: &linear::Matrix3| rows(m, value::DEFAULT_ROTATION_TOLERANCE);
-        (dh::place(placement.convention, row, &snap), placement.span)
+        (dh::place(placement.convention, row, rows), placement.span)
     }
 
     /// I_G from an inertia form; shapes scale with the (affine) mass.
@@ -276,18 +273,18 @@ impl Resolver<'_> {
 
 const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
-/// Rows of a rotation, with entries within the tolerance (1e-15 by default) of 0 or ±1 made
-/// exact: `rpy(pi / 2, 0, 0)` means a quarter turn, whose cosine is 0, not 6e-17, and the
-/// exact zeros let the expansion fold the terms they multiply. The same holds for matrices
-/// given by their entries, which are often printed by a tool that computed them from angles
-/// (Pinocchio gives the Panda's quarter turns as 2.2e-16 and 1): a rotation by 1e-15 rad is
-/// no rotation, and keeping the residue costs the Panda's mass matrix 80 % more operations.
+/// Rows of a rotation, with entries within 1e-15 of 0 or ±1 made exact: `rpy(pi / 2, 0, 0)`
+/// means a quarter turn, whose cosine is 0, not 6e-17, and the exact zeros let the
+/// expansion fold the terms they multiply. The same holds for matrices given by their
+/// entries, which are often printed by a tool that computed them from angles (Pinocchio
+/// gives the Panda's quarter turns as 2.2e-16 and 1): a rotation by 1e-15 rad is no
+/// rotation, and keeping the residue costs the Panda's mass matrix 80 % more operations.
 /// A URDF that writes π/2 as 1.57079632679 leaves 4.9e-12: `rotation_tolerance: 1e-10;`
-/// takes that as exact too (for `rpy` and axis-angle by taking the angle as the quarter
-/// turn, [`value::snapped_angle`], so that the rotation stays orthonormal; for a matrix
-/// entry by entry).
-fn rows(m: &linear::Matrix3, tolerance: f64) -> [[f64; 3]; 3] {
-    value::snapped_within(m, tolerance)
+/// takes that as exact too, for `rpy`, axis-angle and DH rows by taking the angle as the
+/// quarter turn ([`value::snapped_angle`], so that the rotation stays orthonormal), for a
+/// matrix entry by entry.
+fn rows(m: &linear::Matrix3) -> [[f64; 3]; 3] {
+    value::snapped(m)
 }
 
 /// Resolves every number, form and name list of the declaration.
