@@ -260,17 +260,22 @@ macro_rules! map_fn {
             let lanes = lanes_of::<$First::Element>();
             let mut $first = $first.chunks(lanes);
             $(let mut $arg = $arg.chunks(lanes);)*
-            for out in out.chunks_mut(lanes) {
-                let (Some($first), $(Some($arg),)*) =
-                    ($first.next().and_then(pack), $($arg.next().and_then(pack),)*)
-                else {
-                    break;
-                };
-                let packed = f(&$first, $(&$arg),*);
-                for (lane, o) in out.iter_mut().enumerate() {
-                    O::unpack(&packed, lane, o);
-                }
-            }
+            crate::isa::run_loop(
+                #[inline(always)]
+                || {
+                    for out in out.chunks_mut(lanes) {
+                        let (Some($first), $(Some($arg),)*) =
+                            ($first.next().and_then(pack), $($arg.next().and_then(pack),)*)
+                        else {
+                            break;
+                        };
+                        let packed = f(&$first, $(&$arg),*);
+                        for (lane, o) in out.iter_mut().enumerate() {
+                            O::unpack(&packed, lane, o);
+                        }
+                    }
+                },
+            );
         }
 
         #[doc = concat!("[`", stringify!($name), "`] on rayon's threads (feature `rayon`): ")]
