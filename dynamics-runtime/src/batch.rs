@@ -22,11 +22,17 @@
 //! With the `rayon` feature (off by default) `par_mapN` does the same on all of rayon's
 //! threads, in blocks of 16 packs: the same results, bit for bit.
 //!
+//! The loop (packing, the calls, unpacking) runs in the copy the kernels run in: compiled
+//! for AVX2 and FMA where `f64`'s kernels are ([`isa`](crate::isa)), so that packing and
+//! unpacking move whole AVX registers. It only moves numbers, and each call still runs the
+//! copy its kernel chooses, so the results are those of that copy either way.
+//!
 //! Speed (the [`lanes`](crate::lanes) module, "Speed"): in a default build an [`F64x4`]
-//! runs in the AVX2 + FMA copy where `f64` does, 1.05 to 2.3× the throughput of `f64`
-//! calls through these helpers (1.75 to 3.0× on states already in lanes: packing and
-//! unpacking take the rest, most for an 18 × 18 mass matrix); built with
-//! `-C target-cpu=native`, 2.2 to 2.9× for inverse and forward dynamics.
+//! runs in the AVX2 + FMA copy where `f64` does, 1.6 to 2.3× the throughput of `f64`
+//! calls through these helpers for inverse and forward dynamics, 1.1 to 1.6× for mass
+//! matrices, whose results per state (18 × 18 for a quadruped) take about as long to
+//! unpack as to compute (2.2 to 2.9× and 1.8 to 2.0× on states already in lanes); built
+//! with `-C target-cpu=native`, 2.2 to 2.9× for inverse and forward dynamics.
 //!
 //! # Example
 //!
