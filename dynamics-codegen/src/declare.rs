@@ -346,7 +346,12 @@ fn functions_section(model: &Model, costs: &[Cost]) -> Vec<String> {
         .is_some_and(|s| s.closure_count() > 0);
     let mut lines = vec![String::new(), " # Functions".into(), String::new()];
     for cost in costs {
-        lines.push(format!(" - [`Self::{}`]: {}.", cost.name, cost.ops));
+        let into = if model.outputs.wants_into(&cost.name) {
+            format!(" With [`Self::{}_into`], writing into `out`.", cost.name)
+        } else {
+            String::new()
+        };
+        lines.push(format!(" - [`Self::{}`]: {}.{into}", cost.name, cost.ops));
     }
     let missing: Vec<&str> = crate::model::Outputs::NAMES
         .iter()

@@ -187,7 +187,9 @@ fn too_large_error(mechanism: &Mechanism, function: &str) -> syn::Error {
     // `constraints` for `constraint_jacobian`, ...).
     let flag = |name: &str| {
         let mut outputs = model::Outputs::default();
-        outputs.enable(name).then_some(outputs)
+        outputs
+            .enable(name)
+            .then_some(model::Outputs { into: 0, ..outputs })
     };
     let span = mechanism
         .outputs
@@ -220,7 +222,13 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
     let functions = compiled.functions.iter().map(|f| {
         let fused = passes::fusion::fuse(&f.graph, &f.spec.output);
         let plan = schedule::Plan::new(&f.graph, &f.spec, fused);
-        print::function(&f.graph, &f.spec, &plan)
+        let into = compiled
+            .model
+            .outputs
+            .wants_into(&f.spec.name.to_string())
+            .then(|| print::function_into(&f.graph, &f.spec, &plan));
+        let function = print::function(&f.graph, &f.spec, &plan);
+        quote!(#function #into)
     });
     let wrappers = compiled
         .functions

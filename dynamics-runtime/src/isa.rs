@@ -179,6 +179,23 @@ pub(crate) struct Avx2Fma {
 /// each handed its copy's [`Isa`], inlined into the caller.
 #[inline(always)]
 pub(crate) fn run<R>(wide: impl FnOnce(Isa<true>) -> R, narrow: impl FnOnce(Isa<false>) -> R) -> R {
+    run_with(
+        (),
+        #[inline(always)]
+        |isa, ()| wide(isa),
+        #[inline(always)]
+        |isa, ()| narrow(isa),
+    )
+}
+
+/// [`run`] handing `arg` to the copy that runs (a generated `_into` function's `&mut`
+/// output, which two closures could not both hold).
+#[inline(always)]
+pub(crate) fn run_with<A, R>(
+    arg: A,
+    wide: impl FnOnce(Isa<true>, A) -> R,
+    narrow: impl FnOnce(Isa<false>, A) -> R,
+) -> R {
     #[cfg(all(target_arch = "x86_64", feature = "std"))]
     if self::wide() {
         // The only place an `Isa<true>` is made: `self::wide()` returned true, see below.
@@ -190,12 +207,12 @@ pub(crate) fn run<R>(wide: impl FnOnce(Isa<true>) -> R, narrow: impl FnOnce(Isa<
         return unsafe {
             avx2_fma(
                 #[inline(always)]
-                || wide(proof),
+                || wide(proof, arg),
             )
         };
     }
     let _ = wide;
-    narrow(Isa::BASELINE)
+    narrow(Isa::BASELINE, arg)
 }
 
 /// Runs one piece of a split function like [`run`], but keeps the baseline copy out of

@@ -111,6 +111,18 @@ pub trait Scalar:
         narrow(crate::isa::Isa::BASELINE)
     }
     #[doc(hidden)]
+    /// [`Scalar::run_kernel`] for a generated `_into` function: the same choice of copy,
+    /// `out` (the caller's output) handed to the copy that runs.
+    #[inline(always)]
+    fn run_kernel_into<O: ?Sized>(
+        out: &mut O,
+        wide: impl FnOnce(crate::isa::Isa<true>, &mut O),
+        narrow: impl FnOnce(crate::isa::Isa<false>, &mut O),
+    ) {
+        let _ = wide;
+        narrow(crate::isa::Isa::BASELINE, out);
+    }
+    #[doc(hidden)]
     /// Runs one piece of a split generated function like [`Scalar::run_kernel`], each copy
     /// out of line ([`crate::isa::run_piece`]), so that the pieces stay separate functions.
     #[inline(always)]
@@ -209,6 +221,14 @@ macro_rules! impl_float_scalar {
                 narrow: impl FnOnce(crate::isa::Isa<false>) -> R,
             ) -> R {
                 crate::isa::run(wide, narrow)
+            }
+            #[inline(always)]
+            fn run_kernel_into<O: ?Sized>(
+                out: &mut O,
+                wide: impl FnOnce(crate::isa::Isa<true>, &mut O),
+                narrow: impl FnOnce(crate::isa::Isa<false>, &mut O),
+            ) {
+                crate::isa::run_with(out, wide, narrow);
             }
             #[inline(always)]
             fn run_piece<R>(

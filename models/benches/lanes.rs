@@ -7,7 +7,9 @@
 //! cargo bench -p models --bench lanes -- 'Ur5/'       # one model
 //! ```
 //!
-//! Ids are `lanes/<Model>/<function>/<variant>`; one measured iteration evaluates the
+//! Ids are `lanes/<Model>/<function>/<variant>`, `mass_matrix_into` the mass matrix
+//! written into the result's place (`Robot::mass_matrix_into`, in the `f64` variants and
+//! `F64x4_prepacked`); one measured iteration evaluates the
 //! function on all 64 states of a fixed seeded set (angles in ±π, rates in ±2, torques and
 //! accelerations in ±5, the quadruped's foot forces in [−20, 40] N, unit quaternions) and
 //! keeps every result in memory. Variants:
@@ -65,6 +67,7 @@ macro_rules! model {
     ($c:expr, $name:literal, $states:expr, $nv:expr,
      id: |$q:ident, $v:ident, $a:ident, $l:ident| $id:expr,
      mm: |$mq:ident| $mm:expr,
+     mm_into: |$iq:ident, $io:ident| $mm_into:expr,
      fd: |$fq:ident, $fv:ident, $ft:ident, $fl:ident| $fd:expr) => {{
         let s = $states;
         let (q32, v32, a32, tau32, l32) = (
@@ -100,6 +103,13 @@ macro_rules! model {
                 for i in 0..N {
                     let $mq = &s.q[i];
                     m[i] = $mm;
+                }
+                black_box(&mut m);
+            });
+            bench($c, $name, &format!("mass_matrix_into/{variant}"), || {
+                for i in 0..N {
+                    let ($iq, $io) = (&s.q[i], &mut m[i]);
+                    $mm_into;
                 }
                 black_box(&mut m);
             });
@@ -177,6 +187,13 @@ macro_rules! model {
             }
             black_box(&mut packed_m);
         });
+        bench($c, $name, "mass_matrix_into/F64x4_prepacked", || {
+            for i in 0..N / 4 {
+                let ($iq, $io) = (&pq[i], &mut packed_m[i]);
+                $mm_into;
+            }
+            black_box(&mut packed_m);
+        });
         bench($c, $name, "forward_dynamics/F64x4_prepacked", || {
             for i in 0..N / 4 {
                 let ($fq, $fv, $ft, $fl) = (&pq[i], &pv[i], &ptau[i], &pl[i]);
@@ -193,6 +210,7 @@ fn benches(c: &mut Criterion) {
     model!(&mut g, "lanes/Ur5", &States::<UR5, UR5, 0>::new(1, N), UR5,
         id: |q, v, a, _l| Ur5::inverse_dynamics(q, v, a),
         mm: |q| Ur5::mass_matrix(q),
+        mm_into: |q, out| Ur5::mass_matrix_into(q, out),
         fd: |q, v, tau, _l| Ur5::forward_dynamics(q, v, tau));
     g.finish();
     let mut g = c.benchmark_group("lanes/Quadruped");
@@ -200,6 +218,7 @@ fn benches(c: &mut Criterion) {
     model!(&mut g, "lanes/Quadruped", &States::<QUAD_NQ, QUAD_NV, QUAD_NL>::new(2, N), QUAD_NV,
         id: |q, v, a, l| Quadruped::inverse_dynamics(q, v, a, l),
         mm: |q| Quadruped::mass_matrix(q),
+        mm_into: |q, out| Quadruped::mass_matrix_into(q, out),
         fd: |q, v, tau, l| Quadruped::forward_dynamics(q, v, tau, l));
     g.finish();
 }

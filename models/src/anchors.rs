@@ -100,6 +100,9 @@ mechanism! {
     /// Declared from the numbers of `tests/data/pinocchio/ur5.json`.
     pub struct Ur5;
     gravity: [0.0, 0.0, -9.81];
+    // The default outputs, the mass matrix with its `_into` twin (the lanes benchmark's).
+    outputs: [inverse_dynamics, gravity, bias, mass_matrix_into, coriolis_matrix, forward_dynamics,
+              energy, joint_reactions];
 
     body shoulder_link {
         mass: 3.7,

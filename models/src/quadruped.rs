@@ -13,6 +13,9 @@ mechanism! {
     /// the ground contact forces on the feet, in each shin's frame.
     pub struct Quadruped;
     gravity: [0.0, 0.0, -9.81];
+    // The default outputs, the mass matrix with its `_into` twin (the lanes benchmark's).
+    outputs: [inverse_dynamics, gravity, bias, mass_matrix_into, coriolis_matrix, forward_dynamics,
+              energy, joint_reactions];
 
     /// The torso, its frame at the mass centre along its principal axes.
     body torso { mass: 3.575, inertia: diag([0.017528444, 0.129944698, 0.143418825]) }

@@ -99,6 +99,9 @@ pub struct Outputs {
     pub mass_matrix_inverse: bool,
     /// ∂p/∂q, ∂ṗ/∂q and ∂ṗ/∂q̇ of the generalized momentum p = M(q) q̇.
     pub momentum_derivatives: bool,
+    /// The functions asked for with `_into` (`mass_matrix_into`), which get a twin that
+    /// writes into the caller's `out`: bit `i` for [`Outputs::NAMES`]`[i]`.
+    pub into: u64,
 }
 
 impl Outputs {
@@ -188,6 +191,7 @@ impl Outputs {
             forward_dynamics_derivatives: false,
             mass_matrix_inverse: false,
             momentum_derivatives: false,
+            into: 0,
         }
     }
 
@@ -207,8 +211,22 @@ impl Outputs {
         }
     }
 
-    /// Turns on the output with this name; `false` if the name is unknown.
+    /// Turns on the output with this name; `false` if the name is unknown. A known
+    /// function's name with `_into` (`mass_matrix_into`) turns it on with its `_into` twin.
     pub fn enable(&mut self, name: &str) -> bool {
+        if let Some(stem) = name.strip_suffix("_into") {
+            let stem = Self::ALIASES
+                .iter()
+                .find(|(alias, _)| *alias == stem)
+                .map_or(stem, |(_, full)| full);
+            return match Self::NAMES.iter().position(|n| *n == stem) {
+                Some(i) if self.enable(stem) => {
+                    self.into |= 1 << i;
+                    true
+                }
+                _ => false,
+            };
+        }
         let name = Self::ALIASES
             .iter()
             .find(|(alias, _)| *alias == name)
@@ -256,6 +274,14 @@ impl Outputs {
         true
     }
 
+    /// Whether the function `name` was asked for with `_into`.
+    pub fn wants_into(&self, name: &str) -> bool {
+        Self::NAMES
+            .iter()
+            .position(|n| *n == name)
+            .is_some_and(|i| self.into & (1 << i) != 0)
+    }
+
     /// Whether any output needs at least one degree of freedom.
     pub fn any_dynamics(&self) -> bool {
         self.inverse_dynamics
@@ -272,6 +298,9 @@ impl Outputs {
             || self.momentum_derivatives
     }
 }
+
+// The `_into` bits of `Outputs::into`, one per name, fit in its `u64`.
+const _: () = assert!(Outputs::NAMES.len() <= 64);
 
 /// A declared symbolic parameter: an input of the generated code.
 #[derive(Clone, Debug, PartialEq)]

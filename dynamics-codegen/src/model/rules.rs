@@ -282,7 +282,9 @@ pub(crate) fn output_is_known(outputs: &mut Outputs, name: &Name, d: &mut Diagno
         d.error(
             name.span,
             format!(
-                "unknown output `{}`{suggestion} The outputs are {} (or the short forms {}).",
+                "unknown output `{}`{suggestion} The outputs are {} (or the short forms {}), \
+                 each also with `_into` (`mass_matrix_into`) for a twin that writes into the \
+                 caller's `out`.",
                 name.text,
                 Outputs::NAMES.join(", "),
                 Outputs::ALIASES

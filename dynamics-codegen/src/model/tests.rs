@@ -651,6 +651,30 @@ fn written_numbers_are_short() {
 }
 
 #[test]
+fn an_output_with_into_asks_for_its_twin_too() {
+    let mut outputs = Outputs::default();
+    assert!(outputs.enable("mass_matrix_into"));
+    assert!(outputs.enable("energy_into"));
+    assert!(outputs.enable("inverse_dynamics"));
+    assert!(outputs.mass_matrix && outputs.energy && outputs.inverse_dynamics);
+    assert!(outputs.wants_into("mass_matrix"));
+    assert!(outputs.wants_into("kinetic_energy"));
+    assert!(!outputs.wants_into("potential_energy"));
+    assert!(!outputs.wants_into("inverse_dynamics"));
+    assert!(!outputs.enable("mass_matirx_into"));
+    assert!(!outputs.enable("_into"));
+    let e = errors(quote! {
+        struct Bad;
+        outputs: [mass_matirx_into];
+        body a { mass: 1.0, com: [0.1, 0.0, 0.0], shape: point }
+        joint j: revolute(ground -> a) { axis: z }
+    })
+    .join("\n");
+    assert!(e.contains("unknown output `mass_matirx_into`"), "{e}");
+    assert!(e.contains("each also with `_into`"), "{e}");
+}
+
+#[test]
 fn an_unknown_output_suggests_the_closest_name() {
     let e = errors(quote! {
         struct Bad;

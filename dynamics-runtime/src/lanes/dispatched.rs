@@ -265,6 +265,15 @@ impl Scalar for F64x4 {
     }
     /// `f64`'s choice of copy.
     #[inline(always)]
+    fn run_kernel_into<O: ?Sized>(
+        out: &mut O,
+        wide: impl FnOnce(Isa<true>, &mut O),
+        narrow: impl FnOnce(Isa<false>, &mut O),
+    ) {
+        <f64 as Scalar>::run_kernel_into(out, wide, narrow);
+    }
+    /// `f64`'s choice of copy.
+    #[inline(always)]
     fn run_piece<R>(wide: impl FnOnce(Isa<true>) -> R, narrow: impl FnOnce(Isa<false>) -> R) -> R {
         <f64 as Scalar>::run_piece(wide, narrow)
     }

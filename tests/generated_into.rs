@@ -1,0 +1,213 @@
+//! The `<name>_into` twins (asked for as `mass_matrix_into` in `outputs:`): each writes
+//! into the caller's `out` exactly what its function returns, bit for bit, and every entry
+//! of `out` (filled with NaN before the call), on `f64` and on `F64x4` lanes, for a
+//! function in one piece (the entries written as they are computed) and for one cut into
+//! pieces or finished by a solve loop (its result written into `out`).
+
+use dynamics_runtime::{mechanism, F64x4, Mechanism};
+
+mechanism! {
+    pub struct PandaInto;
+    urdf: "../models/urdf/panda.urdf";
+    outputs: [inverse_dynamics, mass_matrix_into, coriolis_matrix_into, kinetic_energy_into,
+              joint_reactions_into, inverse_dynamics_derivatives_into,
+              forward_dynamics_derivatives_into, mass_matrix_inverse_into];
+}
+
+mechanism! {
+    /// A three-joint arm with loads: its derivatives are a triple of matrices.
+    pub struct LoadedArmInto;
+    outputs: [mass_matrix_into, inverse_dynamics_derivatives_into, joint_placements_into];
+    body upper { mass: 2.0, com: [0.0, 0.0, 0.2], shape: cylinder(radius: 0.04, length: 0.4, axis: z) }
+    body fore { mass: 1.2, com: [0.15, 0.0, 0.0], shape: rod(length: 0.3, axis: x) }
+    body tip { mass: 0.3, com: [0.05, 0.0, 0.01], shape: box(size: [0.1, 0.04, 0.03]) }
+    joint shoulder: revolute(ground -> upper) { axis: z }
+    joint elbow: revolute(upper -> fore) { axis: y, at: [0.0, 0.0, 0.4], damping: 0.1 }
+    joint wrist: prismatic(fore -> tip) { axis: x, at: [0.3, 0.0, 0.0] }
+    load push: force on tip at [0.1, 0.01, 0.0] in world;
+    load spin: couple on upper;
+}
+
+/// The bits of every number in a value (arrays, tuples, nested), in order.
+trait Bits {
+    fn bits(&self, out: &mut Vec<u64>);
+}
+impl Bits for f64 {
+    fn bits(&self, out: &mut Vec<u64>) {
+        out.push(self.to_bits());
+    }
+}
+impl Bits for F64x4 {
+    fn bits(&self, out: &mut Vec<u64>) {
+        out.extend(self.to_array().map(f64::to_bits));
+    }
+}
+impl<B: Bits, const N: usize> Bits for [B; N] {
+    fn bits(&self, out: &mut Vec<u64>) {
+        self.iter().for_each(|b| b.bits(out));
+    }
+}
+impl<A: Bits, B: Bits> Bits for (A, B) {
+    fn bits(&self, out: &mut Vec<u64>) {
+        self.0.bits(out);
+        self.1.bits(out);
+    }
+}
+impl<A: Bits, B: Bits, C: Bits> Bits for (A, B, C) {
+    fn bits(&self, out: &mut Vec<u64>) {
+        self.0.bits(out);
+        self.1.bits(out);
+        self.2.bits(out);
+    }
+}
+
+/// `into` wrote exactly `expected` into an `out` that held NaN everywhere.
+fn assert_same<O: Bits>(expected: O, mut out: O, into: impl FnOnce(&mut O), what: &str) {
+    let mut before = Vec::new();
+    out.bits(&mut before);
+    assert!(
+        before.iter().all(|&b| f64::from_bits(b).is_nan()),
+        "{what}: `out` starts as NaN"
+    );
+    into(&mut out);
+    let (mut got, mut want) = (Vec::new(), Vec::new());
+    out.bits(&mut got);
+    expected.bits(&mut want);
+    assert_eq!(got, want, "{what}: `_into` against the returned value");
+}
+
+/// A number in [-2, 2) from a counter (no randomness needed: any state will do).
+fn wobble(k: usize) -> f64 {
+    ((k as f64) * 0.618_033_988_75).fract() * 4.0 - 2.0
+}
+
+fn state<const N: usize>(seed: usize) -> [f64; N] {
+    std::array::from_fn(|i| wobble(seed * 31 + i))
+}
+
+#[test]
+fn the_into_twins_write_what_their_functions_return_on_f64() {
+    const N: usize = <PandaInto as Mechanism>::NV;
+    let n = f64::NAN;
+    for seed in 0..10 {
+        let (q, v, a): ([f64; N], [f64; N], [f64; N]) =
+            (state(seed), state(seed + 100), state(seed + 200));
+        let what = |f: &str| format!("Panda {f}, state {seed}");
+        assert_same(
+            PandaInto::mass_matrix(&q),
+            [[n; N]; N],
+            |o| PandaInto::mass_matrix_into(&q, o),
+            &what("mass_matrix"),
+        );
+        assert_same(
+            PandaInto::coriolis_matrix(&q, &v),
+            [[n; N]; N],
+            |o| PandaInto::coriolis_matrix_into(&q, &v, o),
+            &what("coriolis_matrix"),
+        );
+        assert_same(
+            PandaInto::kinetic_energy(&q, &v),
+            n,
+            |o| PandaInto::kinetic_energy_into(&q, &v, o),
+            &what("kinetic_energy"),
+        );
+        let reactions = PandaInto::joint_reactions(&q, &v, &a);
+        assert_same(
+            reactions,
+            reactions.map(|w| w.map(|_| n)),
+            |o| PandaInto::joint_reactions_into(&q, &v, &a, o),
+            &what("joint_reactions"),
+        );
+        assert_same(
+            PandaInto::inverse_dynamics_derivatives(&q, &v, &a),
+            ([[n; N]; N], [[n; N]; N]),
+            |o| PandaInto::inverse_dynamics_derivatives_into(&q, &v, &a, o),
+            &what("∂τ"),
+        );
+        assert_same(
+            PandaInto::forward_dynamics_derivatives(&q, &v, &a),
+            ([[n; N]; N], [[n; N]; N]),
+            |o| PandaInto::forward_dynamics_derivatives_into(&q, &v, &a, o),
+            &what("∂q̈"),
+        );
+        assert_same(
+            PandaInto::mass_matrix_inverse(&q),
+            [[n; N]; N],
+            |o| PandaInto::mass_matrix_inverse_into(&q, o),
+            &what("M⁻¹"),
+        );
+    }
+}
+
+#[test]
+fn the_into_twins_write_what_their_functions_return_on_lanes() {
+    const N: usize = <PandaInto as Mechanism>::NV;
+    let n = F64x4::splat(f64::NAN);
+    let lanes = |seed: usize| -> [F64x4; N] {
+        std::array::from_fn(|i| F64x4::from_fn(|k| wobble(seed * 131 + i * 4 + k)))
+    };
+    for seed in 0..5 {
+        let (q, v, a) = (lanes(seed), lanes(seed + 50), lanes(seed + 90));
+        let what = |f: &str| format!("Panda on F64x4, {f}, state {seed}");
+        assert_same(
+            PandaInto::mass_matrix(&q),
+            [[n; N]; N],
+            |o| PandaInto::mass_matrix_into(&q, o),
+            &what("mass_matrix"),
+        );
+        assert_same(
+            PandaInto::coriolis_matrix(&q, &v),
+            [[n; N]; N],
+            |o| PandaInto::coriolis_matrix_into(&q, &v, o),
+            &what("coriolis_matrix"),
+        );
+        assert_same(
+            PandaInto::inverse_dynamics_derivatives(&q, &v, &a),
+            ([[n; N]; N], [[n; N]; N]),
+            |o| PandaInto::inverse_dynamics_derivatives_into(&q, &v, &a, o),
+            &what("∂τ"),
+        );
+        assert_same(
+            PandaInto::forward_dynamics_derivatives(&q, &v, &a),
+            ([[n; N]; N], [[n; N]; N]),
+            |o| PandaInto::forward_dynamics_derivatives_into(&q, &v, &a, o),
+            &what("∂q̈"),
+        );
+    }
+}
+
+#[test]
+fn a_triple_of_matrices_and_a_stack_of_poses_are_written_whole() {
+    const N: usize = <LoadedArmInto as Mechanism>::NV;
+    const L: usize = <LoadedArmInto as Mechanism>::NUM_LOAD_INPUTS;
+    let n = f64::NAN;
+    for seed in 0..10 {
+        let (q, v, a, loads): ([f64; N], [f64; N], [f64; N], [f64; L]) = (
+            state(seed),
+            state(seed + 7),
+            state(seed + 11),
+            state(seed + 13),
+        );
+        let what = |f: &str| format!("loaded arm {f}, state {seed}");
+        assert_same(
+            LoadedArmInto::mass_matrix(&q),
+            [[n; N]; N],
+            |o| LoadedArmInto::mass_matrix_into(&q, o),
+            &what("mass_matrix"),
+        );
+        assert_same(
+            LoadedArmInto::inverse_dynamics_derivatives(&q, &v, &a, &loads),
+            ([[n; N]; N], [[n; N]; N], [[n; L]; N]),
+            |o| LoadedArmInto::inverse_dynamics_derivatives_into(&q, &v, &a, &loads, o),
+            &what("∂τ"),
+        );
+        let poses = LoadedArmInto::joint_placements(&q);
+        let nan_poses = poses.map(|(r, t)| (r.map(|row| row.map(|_| n)), t.map(|_| n)));
+        assert_same(
+            poses,
+            nan_poses,
+            |o| LoadedArmInto::joint_placements_into(&q, o),
+            &what("joint_placements"),
+        );
+    }
+}
