@@ -28,10 +28,10 @@
 //! copy its kernel chooses, so the results are those of that copy either way.
 //!
 //! Speed (the [`lanes`](crate::lanes) module, "Speed"): in a default build an [`F64x4`]
-//! runs in the AVX2 + FMA copy where `f64` does, 1.6 to 2.3× the throughput of `f64`
-//! calls through these helpers for inverse and forward dynamics, 1.1 to 1.6× for mass
+//! runs in the AVX2 + FMA copy where `f64` does, 1.6 to 2.5× the throughput of `f64`
+//! calls through these helpers for inverse and forward dynamics, 1.0 to 1.7× for mass
 //! matrices, whose results per state (18 × 18 for a quadruped) take about as long to
-//! unpack as to compute (2.2 to 2.9× and 1.8 to 2.0× on states already in lanes); built
+//! unpack as to compute (2.2 to 3.1× and 1.6 to 2.2× on states already in lanes); built
 //! with `-C target-cpu=native`, 2.2 to 2.9× for inverse and forward dynamics.
 //!
 //! # Example
