@@ -1,10 +1,10 @@
 //! The `<name>_into` twins (asked for as `mass_matrix_into` in `outputs:`): each writes
 //! into the caller's `out` exactly what its function returns, bit for bit, and every entry
-//! of `out` (filled with NaN before the call), on `f64` and on `F64x4` lanes, for a
-//! function in one piece (the entries written as they are computed) and for one cut into
-//! pieces or finished by a solve loop (its result written into `out`).
+//! of `out` (filled with NaN before the call), on `f64` and on `F64x4` lanes, for
+//! functions in one piece (the entries written as they are computed) and for one finished
+//! by a solve loop (∂q̈, its result written into `out`).
 
-use dynamics_runtime::{mechanism, F64x4, Mechanism};
+use dynamics_runtime::{mechanism, F64x4, Mechanism, Scalar};
 
 mechanism! {
     pub struct PandaInto;
@@ -85,26 +85,52 @@ fn state<const N: usize>(seed: usize) -> [f64; N] {
     std::array::from_fn(|i| wobble(seed * 31 + i))
 }
 
+const PANDA: usize = <PandaInto as Mechanism>::NV;
+
+/// The Panda's twins at one state, on any scalar (`n` is NaN in it): the mass matrix and
+/// the Coriolis matrix (written as computed), ∂τ (a pair, as computed) and ∂q̈ (a pair,
+/// finished by a solve loop, written after it).
+fn panda_twins<T: Scalar + Bits>(
+    (q, v, a): ([T; PANDA], [T; PANDA], [T; PANDA]),
+    n: T,
+    what: &dyn Fn(&str) -> String,
+) {
+    const N: usize = PANDA;
+    assert_same(
+        PandaInto::mass_matrix(&q),
+        [[n; N]; N],
+        |o| PandaInto::mass_matrix_into(&q, o),
+        &what("mass_matrix"),
+    );
+    assert_same(
+        PandaInto::coriolis_matrix(&q, &v),
+        [[n; N]; N],
+        |o| PandaInto::coriolis_matrix_into(&q, &v, o),
+        &what("coriolis_matrix"),
+    );
+    assert_same(
+        PandaInto::inverse_dynamics_derivatives(&q, &v, &a),
+        ([[n; N]; N], [[n; N]; N]),
+        |o| PandaInto::inverse_dynamics_derivatives_into(&q, &v, &a, o),
+        &what("∂τ"),
+    );
+    assert_same(
+        PandaInto::forward_dynamics_derivatives(&q, &v, &a),
+        ([[n; N]; N], [[n; N]; N]),
+        |o| PandaInto::forward_dynamics_derivatives_into(&q, &v, &a, o),
+        &what("∂q̈"),
+    );
+}
+
 #[test]
 fn the_into_twins_write_what_their_functions_return_on_f64() {
-    const N: usize = <PandaInto as Mechanism>::NV;
+    const N: usize = PANDA;
     let n = f64::NAN;
     for seed in 0..10 {
         let (q, v, a): ([f64; N], [f64; N], [f64; N]) =
             (state(seed), state(seed + 100), state(seed + 200));
         let what = |f: &str| format!("Panda {f}, state {seed}");
-        assert_same(
-            PandaInto::mass_matrix(&q),
-            [[n; N]; N],
-            |o| PandaInto::mass_matrix_into(&q, o),
-            &what("mass_matrix"),
-        );
-        assert_same(
-            PandaInto::coriolis_matrix(&q, &v),
-            [[n; N]; N],
-            |o| PandaInto::coriolis_matrix_into(&q, &v, o),
-            &what("coriolis_matrix"),
-        );
+        panda_twins((q, v, a), n, &what);
         assert_same(
             PandaInto::kinetic_energy(&q, &v),
             n,
@@ -119,18 +145,6 @@ fn the_into_twins_write_what_their_functions_return_on_f64() {
             &what("joint_reactions"),
         );
         assert_same(
-            PandaInto::inverse_dynamics_derivatives(&q, &v, &a),
-            ([[n; N]; N], [[n; N]; N]),
-            |o| PandaInto::inverse_dynamics_derivatives_into(&q, &v, &a, o),
-            &what("∂τ"),
-        );
-        assert_same(
-            PandaInto::forward_dynamics_derivatives(&q, &v, &a),
-            ([[n; N]; N], [[n; N]; N]),
-            |o| PandaInto::forward_dynamics_derivatives_into(&q, &v, &a, o),
-            &what("∂q̈"),
-        );
-        assert_same(
             PandaInto::mass_matrix_inverse(&q),
             [[n; N]; N],
             |o| PandaInto::mass_matrix_inverse_into(&q, o),
@@ -141,38 +155,13 @@ fn the_into_twins_write_what_their_functions_return_on_f64() {
 
 #[test]
 fn the_into_twins_write_what_their_functions_return_on_lanes() {
-    const N: usize = <PandaInto as Mechanism>::NV;
-    let n = F64x4::splat(f64::NAN);
-    let lanes = |seed: usize| -> [F64x4; N] {
+    let lanes = |seed: usize| -> [F64x4; PANDA] {
         std::array::from_fn(|i| F64x4::from_fn(|k| wobble(seed * 131 + i * 4 + k)))
     };
     for seed in 0..5 {
-        let (q, v, a) = (lanes(seed), lanes(seed + 50), lanes(seed + 90));
+        let state = (lanes(seed), lanes(seed + 50), lanes(seed + 90));
         let what = |f: &str| format!("Panda on F64x4, {f}, state {seed}");
-        assert_same(
-            PandaInto::mass_matrix(&q),
-            [[n; N]; N],
-            |o| PandaInto::mass_matrix_into(&q, o),
-            &what("mass_matrix"),
-        );
-        assert_same(
-            PandaInto::coriolis_matrix(&q, &v),
-            [[n; N]; N],
-            |o| PandaInto::coriolis_matrix_into(&q, &v, o),
-            &what("coriolis_matrix"),
-        );
-        assert_same(
-            PandaInto::inverse_dynamics_derivatives(&q, &v, &a),
-            ([[n; N]; N], [[n; N]; N]),
-            |o| PandaInto::inverse_dynamics_derivatives_into(&q, &v, &a, o),
-            &what("∂τ"),
-        );
-        assert_same(
-            PandaInto::forward_dynamics_derivatives(&q, &v, &a),
-            ([[n; N]; N], [[n; N]; N]),
-            |o| PandaInto::forward_dynamics_derivatives_into(&q, &v, &a, o),
-            &what("∂q̈"),
-        );
+        panda_twins(state, F64x4::splat(f64::NAN), &what);
     }
 }
 

@@ -296,17 +296,10 @@ pub(crate) fn function(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> Token
         }
     };
 
+    let allows = generated_allows();
     quote! {
         #(#docs)*
-        #[allow(
-            clippy::too_many_lines,
-            clippy::approx_constant,
-            clippy::excessive_precision,
-            clippy::unreadable_literal,
-            clippy::similar_names,
-            clippy::many_single_char_names,
-            clippy::eq_op
-        )]
+        #allows
         #[must_use]
         #vis fn #name<T: #trait_>(#(#params),*) -> #ret {
             #body
@@ -376,17 +369,10 @@ pub(crate) fn function_into(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> 
         }
         _ => quote!(*out = Self::#name(#(#args),*);),
     };
+    let allows = generated_allows();
     quote! {
         #(#docs)*
-        #[allow(
-            clippy::too_many_lines,
-            clippy::approx_constant,
-            clippy::excessive_precision,
-            clippy::unreadable_literal,
-            clippy::similar_names,
-            clippy::many_single_char_names,
-            clippy::eq_op
-        )]
+        #allows
         #vis fn #name_into<T: #trait_>(#(#params,)* out: &mut #ret) {
             #body
         }
@@ -441,6 +427,22 @@ fn output_places(output: &Output) -> Option<HashMap<Node, Vec<TokenStream>>> {
     }
     let mut places = HashMap::new();
     walk(output, &quote!((*out)), &mut places).then_some(places)
+}
+
+/// The lints a generated function allows: it is long, its constants are printed to the
+/// last digit, and its names are `v0`, `v1`, ...
+fn generated_allows() -> TokenStream {
+    quote! {
+        #[allow(
+            clippy::too_many_lines,
+            clippy::approx_constant,
+            clippy::excessive_precision,
+            clippy::unreadable_literal,
+            clippy::similar_names,
+            clippy::many_single_char_names,
+            clippy::eq_op
+        )]
+    }
 }
 
 /// Functions with fewer operations than this, and sines and cosines of at most one
