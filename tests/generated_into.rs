@@ -1,8 +1,9 @@
 //! The `<name>_into` twins (asked for as `mass_matrix_into` in `outputs:`): each writes
 //! into the caller's `out` exactly what its function returns, bit for bit, and every entry
 //! of `out` (filled with NaN before the call), on `f64` and on `F64x4` lanes, for
-//! functions in one piece (the entries written as they are computed) and for one finished
-//! by a solve loop (∂q̈, its result written into `out`).
+//! functions in one piece (the entries written as they are computed), cut into pieces
+//! (each output written by the piece that computes it) and finished by a solve loop (∂q̈,
+//! its result written into `out`).
 
 use dynamics_runtime::{mechanism, F64x4, Mechanism, Scalar};
 
@@ -26,6 +27,59 @@ mechanism! {
     joint wrist: prismatic(fore -> tip) { axis: x, at: [0.3, 0.0, 0.0] }
     load push: force on tip at [0.1, 0.01, 0.0] in world;
     load spin: couple on upper;
+}
+
+mechanism! {
+    /// A ten-link spatial chain: its Coriolis matrix and ∂τ are cut into two pieces each.
+    pub struct ChainInto;
+    outputs: [coriolis_matrix_into, inverse_dynamics_derivatives_into];
+    body l0 { mass: 1.0, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l1 { mass: 1.1, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l2 { mass: 1.2, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l3 { mass: 1.3, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l4 { mass: 1.4, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l5 { mass: 1.5, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l6 { mass: 1.6, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l7 { mass: 1.7, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l8 { mass: 1.8, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l9 { mass: 1.9, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    joint j0: revolute(ground -> l0) { axis: z, at: [0.2, 0.0, 0.05] }
+    joint j1: revolute(l0 -> l1) { axis: y, at: [0.2, 0.0, 0.05] }
+    joint j2: revolute(l1 -> l2) { axis: x, at: [0.2, 0.0, 0.05] }
+    joint j3: revolute(l2 -> l3) { axis: z, at: [0.2, 0.0, 0.05] }
+    joint j4: revolute(l3 -> l4) { axis: y, at: [0.2, 0.0, 0.05] }
+    joint j5: revolute(l4 -> l5) { axis: x, at: [0.2, 0.0, 0.05] }
+    joint j6: revolute(l5 -> l6) { axis: z, at: [0.2, 0.0, 0.05] }
+    joint j7: revolute(l6 -> l7) { axis: y, at: [0.2, 0.0, 0.05] }
+    joint j8: revolute(l7 -> l8) { axis: x, at: [0.2, 0.0, 0.05] }
+    joint j9: revolute(l8 -> l9) { axis: z, at: [0.2, 0.0, 0.05] }
+}
+
+mechanism! {
+    /// The same chain with the baseline copies only: its pieces are plain functions.
+    pub struct ChainIntoBaseline;
+    isa: baseline;
+    outputs: [coriolis_matrix_into];
+    body l0 { mass: 1.0, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l1 { mass: 1.1, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l2 { mass: 1.2, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l3 { mass: 1.3, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l4 { mass: 1.4, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l5 { mass: 1.5, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l6 { mass: 1.6, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l7 { mass: 1.7, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l8 { mass: 1.8, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    body l9 { mass: 1.9, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
+    joint j0: revolute(ground -> l0) { axis: z, at: [0.2, 0.0, 0.05] }
+    joint j1: revolute(l0 -> l1) { axis: y, at: [0.2, 0.0, 0.05] }
+    joint j2: revolute(l1 -> l2) { axis: x, at: [0.2, 0.0, 0.05] }
+    joint j3: revolute(l2 -> l3) { axis: z, at: [0.2, 0.0, 0.05] }
+    joint j4: revolute(l3 -> l4) { axis: y, at: [0.2, 0.0, 0.05] }
+    joint j5: revolute(l4 -> l5) { axis: x, at: [0.2, 0.0, 0.05] }
+    joint j6: revolute(l5 -> l6) { axis: z, at: [0.2, 0.0, 0.05] }
+    joint j7: revolute(l6 -> l7) { axis: y, at: [0.2, 0.0, 0.05] }
+    joint j8: revolute(l7 -> l8) { axis: x, at: [0.2, 0.0, 0.05] }
+    joint j9: revolute(l8 -> l9) { axis: z, at: [0.2, 0.0, 0.05] }
 }
 
 /// The bits of every number in a value (arrays, tuples, nested), in order.
@@ -197,6 +251,46 @@ fn a_triple_of_matrices_and_a_stack_of_poses_are_written_whole() {
             nan_poses,
             |o| LoadedArmInto::joint_placements_into(&q, o),
             &what("joint_placements"),
+        );
+    }
+}
+
+#[test]
+fn functions_cut_into_pieces_write_each_output_in_the_piece_that_computes_it() {
+    const N: usize = <ChainInto as Mechanism>::NV;
+    let n = f64::NAN;
+    for seed in 0..5 {
+        let (q, v, a): ([f64; N], [f64; N], [f64; N]) =
+            (state(seed + 300), state(seed + 400), state(seed + 500));
+        let what = |f: &str| format!("chain {f}, state {seed}");
+        assert_same(
+            ChainInto::coriolis_matrix(&q, &v),
+            [[n; N]; N],
+            |o| ChainInto::coriolis_matrix_into(&q, &v, o),
+            &what("coriolis_matrix"),
+        );
+        assert_same(
+            ChainInto::inverse_dynamics_derivatives(&q, &v, &a),
+            ([[n; N]; N], [[n; N]; N]),
+            |o| ChainInto::inverse_dynamics_derivatives_into(&q, &v, &a, o),
+            &what("∂τ"),
+        );
+        assert_same(
+            ChainIntoBaseline::coriolis_matrix(&q, &v),
+            [[n; N]; N],
+            |o| ChainIntoBaseline::coriolis_matrix_into(&q, &v, o),
+            &what("coriolis_matrix, baseline copies only"),
+        );
+        let lanes = |k: usize| -> [F64x4; N] {
+            std::array::from_fn(|i| F64x4::from_fn(|l| wobble(seed * 97 + k * 41 + i * 4 + l)))
+        };
+        let (q, v) = (lanes(0), lanes(1));
+        let n = F64x4::splat(f64::NAN);
+        assert_same(
+            ChainInto::coriolis_matrix(&q, &v),
+            [[n; N]; N],
+            |o| ChainInto::coriolis_matrix_into(&q, &v, o),
+            &what("coriolis_matrix on F64x4"),
         );
     }
 }

@@ -221,12 +221,15 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
     let nalgebra = quote!(#runtime::nalgebra);
     let functions = compiled.functions.iter().map(|f| {
         let fused = passes::fusion::fuse(&f.graph, &f.spec.output);
-        let plan = schedule::Plan::new(&f.graph, &f.spec, fused);
         let into = compiled
             .model
             .outputs
             .wants_into(&f.spec.name.to_string())
-            .then(|| print::function_into(&f.graph, &f.spec, &plan));
+            .then(|| {
+                let plan = schedule::Plan::handing_back(&f.graph, &f.spec, fused.clone());
+                print::function_into(&f.graph, &f.spec, &plan)
+            });
+        let plan = schedule::Plan::new(&f.graph, &f.spec, fused);
         let function = print::function(&f.graph, &f.spec, &plan);
         quote!(#function #into)
     });

@@ -311,8 +311,9 @@ pub(crate) fn function(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> Token
 /// same arguments and an `out: &mut` of the output's type, into which each entry is
 /// written as soon as it is computed, so that the result is neither held until the end
 /// nor copied out (for the quadruped's 18 × 18 mass matrix 0.74 of the time in `f64`,
-/// 0.61 on `F64x4`). A function cut into pieces, or finished by a solve loop, writes its
-/// returned value into `out` instead, for now.
+/// 0.61 on `F64x4`). Cut into pieces, each piece writes the outputs it computes (the plan
+/// hands them back, [`Plan::handing_back`]) and the function the outputs that are leaves.
+/// A function finished by a solve loop writes its returned value into `out`, for now.
 #[must_use]
 pub(crate) fn function_into(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> TokenStream {
     let ops = graph.ops();
@@ -328,12 +329,17 @@ pub(crate) fn function_into(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> 
     );
     let docs = doc_attrs(&link, &count, &spec.output);
     let places = output_places(&spec.output);
-    let direct = places.is_some() && plan.pieces.len() == 1;
+    let direct = places.is_some();
     let (params, args): (Vec<TokenStream>, Vec<Ident>) = spec
         .args
         .iter()
         .map(|arg| {
-            let used = !direct || plan.pieces[0].arrays.contains(&arg.array);
+            let used = !direct
+                || plan.pieces.iter().any(|p| p.arrays.contains(&arg.array))
+                || plan
+                    .output_leaves
+                    .iter()
+                    .any(|n| matches!(ops[n.index()], Op::Input(r) if r.array == arg.array));
             let ident = if used {
                 format_ident!("{}", arg.array.name())
             } else {
@@ -344,7 +350,8 @@ pub(crate) fn function_into(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> 
         })
         .unzip();
     let body = match places {
-        Some(places) if direct => {
+        Some(places) if plan.pieces.len() > 1 => plan.chained_pieces_into(&ops, spec, &places),
+        Some(places) => {
             let body = plan.piece_body_into(&ops, 0, &places);
             if !spec.dispatch || !worth_dispatching(&count) {
                 let prelude = plan.baseline_prelude(0, &spec.output);
@@ -538,9 +545,9 @@ impl Plan {
         quote!(#(#stmts)* #result)
     }
 
-    /// The statements of the single piece `p` of a `_into` function: those of
-    /// [`Plan::piece_body`], each followed by the writes of the values it defines into
-    /// their `places` in `out`.
+    /// The statements of piece `p` of a `_into` function: those of [`Plan::piece_body`],
+    /// each followed by the writes of the values it defines into their `places` in `out`,
+    /// then the next piece's carry (the plan hands its outputs back, so none is carried).
     fn piece_body_into(
         &self,
         ops: &[Op],
@@ -557,6 +564,10 @@ impl Plan {
                 .map(move |place| quote!(#place = #v;))
         };
         let mut stmts = Vec::new();
+        if !piece.carry_in.is_empty() {
+            let names = piece.carry_in.iter().map(|&n| var(n));
+            stmts.push(quote!(let [#(#names),*] = *carry;));
+        }
         for &n in &piece.leaves {
             stmts.push(let_node(n, ops[n.index()]));
             stmts.extend(writes(n));
@@ -567,7 +578,12 @@ impl Plan {
                 stmts.extend(writes(n));
             }
         }
-        quote!(#(#stmts)*)
+        // A piece before the last returns the values the next one reads.
+        let carry = self.pieces.get(p + 1).map(|next| {
+            let names = next.carry_in.iter().map(|&n| var(n));
+            quote!([#(#names),*])
+        });
+        quote!(#(#stmts)* #carry)
     }
 
     /// Whether piece `p` returns the function's output: the last piece, unless the pieces
@@ -745,6 +761,95 @@ impl Plan {
             _ => spec.output.expr(),
         };
         quote!(#(#fns)* #(#calls)* #(#leaves)* #output)
+    }
+}
+
+impl Plan {
+    /// The body of a split `_into` function (a plan that hands its outputs back): each
+    /// piece a kernel taking `out` too, writing the outputs it computes and returning the
+    /// next piece's carry, then the outputs that are leaves written by the function itself.
+    fn chained_pieces_into(
+        &self,
+        ops: &[Op],
+        spec: &FunctionSpec,
+        places: &HashMap<Node, Vec<TokenStream>>,
+    ) -> TokenStream {
+        let trait_ = &spec.scalar_trait;
+        let ret = spec.output.ty();
+        let n = self.pieces.len();
+        let mut fns = Vec::new();
+        let mut calls = Vec::new();
+        for (p, piece) in self.pieces.iter().enumerate() {
+            let part = format_ident!("part_{}", p + 1);
+            let carry = format_ident!("carry_{p}");
+            let (mut params, args) = array_params(&piece.arrays, spec);
+            let mut args: Vec<TokenStream> = args.iter().map(|a| quote!(#a)).collect();
+            if !piece.carry_in.is_empty() {
+                let k = Literal::usize_unsuffixed(piece.carry_in.len());
+                params.push(quote!(carry: &[T; #k]));
+                args.push(quote!(&#carry));
+            }
+            params.push(quote!(out: &mut #ret));
+            let returned = self.pieces.get(p + 1).map_or_else(
+                || quote!(()),
+                |next| {
+                    let k = Literal::usize_unsuffixed(next.carry_in.len());
+                    quote!([T; #k])
+                },
+            );
+            let doc = format!(" Piece {} of {n}.", p + 1);
+            let body = self.piece_body_into(ops, p, places);
+            let run = if spec.dispatch {
+                params.insert(0, self.isa_param(p, &spec.output));
+                fns.push(quote! {
+                    #[doc = #doc]
+                    #[inline(always)]
+                    fn #part<T: #trait_, const WIDE: bool>(#(#params),*) -> #returned {
+                        #body
+                    }
+                });
+                quote! {
+                    T::run_piece_into(
+                        out,
+                        #[inline(always)]
+                        |isa, out| #part::<T, true>(isa #(, #args)*, out),
+                        #[inline(always)]
+                        |isa, out| #part::<T, false>(isa #(, #args)*, out),
+                    )
+                }
+            } else {
+                let prelude = self.baseline_prelude(p, &spec.output);
+                fns.push(quote! {
+                    #[doc = #doc]
+                    #[inline(never)]
+                    fn #part<T: #trait_>(#(#params),*) -> #returned {
+                        #prelude
+                        #body
+                    }
+                });
+                quote!(#part(#(#args,)* out))
+            };
+            calls.push(match self.pieces.get(p + 1) {
+                Some(_) => {
+                    let next = format_ident!("carry_{}", p + 1);
+                    quote!(let #next = #run;)
+                }
+                None => quote!(#run;),
+            });
+        }
+        let mut leaves = Vec::new();
+        for &node in &self.output_leaves {
+            leaves.push(let_node(node, ops[node.index()]));
+            let v = var(node);
+            leaves.extend(
+                places
+                    .get(&node)
+                    .into_iter()
+                    .flatten()
+                    .map(|place| quote!(#place = #v;)),
+            );
+        }
+        quote!(#(#fns)* #(#calls)* #(#leaves)*)
     }
 }
 

@@ -141,6 +141,28 @@ impl Plan {
     /// If a live input is not covered by `spec.args` (array missing or index out of range):
     /// that is a bug of the caller, not of the user's model.
     pub(crate) fn new(graph: &Graph, spec: &FunctionSpec, fused: HashMap<Node, Fused>) -> Self {
+        Self::build(graph, spec, fused, false)
+    }
+
+    /// [`Plan::new`] for a `_into` function, which writes each output where it is computed:
+    /// cut into pieces, it hands every output back ([`Plan::hands_back`]) instead of
+    /// carrying them to the last piece.
+    pub(crate) fn handing_back(
+        graph: &Graph,
+        spec: &FunctionSpec,
+        fused: HashMap<Node, Fused>,
+    ) -> Self {
+        Self::build(graph, spec, fused, true)
+    }
+
+    /// [`Plan::new`], the pieces handing their outputs back whenever there are several when
+    /// `always_hand_back`.
+    fn build(
+        graph: &Graph,
+        spec: &FunctionSpec,
+        fused: HashMap<Node, Fused>,
+        always_hand_back: bool,
+    ) -> Self {
         let outputs = &spec.output.nodes();
         let live = &graph.live(outputs);
         let ops = &graph.ops();
@@ -196,7 +218,8 @@ impl Plan {
                 }
             }
         }
-        let hands_back = pieces.len() > HAND_BACK_ABOVE_PIECES;
+        let hands_back =
+            pieces.len() > HAND_BACK_ABOVE_PIECES || (always_hand_back && pieces.len() > 1);
         let mut output_leaves = BTreeSet::new();
         for &out in outputs {
             if ops[out.index()].is_leaf() {

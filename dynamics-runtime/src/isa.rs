@@ -215,6 +215,21 @@ pub(crate) fn run_with<A, R>(
     narrow(Isa::BASELINE, arg)
 }
 
+/// [`run_piece`] handing `arg` to the copy that runs, as [`run_with`].
+#[inline(always)]
+pub(crate) fn run_piece_with<A, R>(
+    arg: A,
+    wide: impl FnOnce(Isa<true>, A) -> R,
+    narrow: impl FnOnce(Isa<false>, A) -> R,
+) -> R {
+    run_with(
+        arg,
+        wide,
+        #[inline(always)]
+        |isa, arg| out_of_line(|| narrow(isa, arg)),
+    )
+}
+
 /// Runs one piece of a split function like [`run`], but keeps the baseline copy out of
 /// line too, so that the pieces stay separate functions either way.
 #[inline(always)]

@@ -86,13 +86,13 @@
 //! A name with `_into` (`mass_matrix_into`) asks for the function and a twin,
 //! `Robot::mass_matrix_into(q, &mut out)`, with the same arguments and a last one, `out: &mut`
 //! the function's result type, into which it writes that result (every entry, bit for bit
-//! what the function returns): nothing is returned or copied, and a function in one piece
-//! (below 2,500 statements, no solve loop) stores each entry as soon as it is computed
-//! instead of holding all of them to the end. For a large matrix that is the faster call:
-//! the 18-dof quadruped's mass matrix takes 0.74 of the time on `f64` and 0.61 on `F64x4`
-//! lanes, 64 results in memory (BENCHMARKS.md, "Many states per call"); a matrix output
-//! of a larger function, or one finished by a solve loop (`forward_dynamics_derivatives`,
-//! M⁻¹ of a large tree), is returned and then written into `out`, for now.
+//! what the function returns): nothing is returned or copied, and each entry is stored as
+//! soon as it is computed instead of being held to the end (in a function cut into pieces,
+//! by the piece that computes it). For a large matrix that is the faster call: the 18-dof
+//! quadruped's mass matrix takes 0.74 of the time on `f64` and 0.61 on `F64x4` lanes, 64
+//! results in memory (BENCHMARKS.md, "Many states per call"). An output finished by a
+//! solve loop (`forward_dynamics_derivatives`, M⁻¹ of a large tree) is returned and then
+//! written into `out`, for now.
 //!
 //! Every function's arguments come in the order `q`, `v`, then `a` or `tau`, then `p` (only
 //! when the mechanism declares `parameters`), then `loads` (only for the functions marked

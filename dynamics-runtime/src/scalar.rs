@@ -123,6 +123,18 @@ pub trait Scalar:
         narrow(crate::isa::Isa::BASELINE, out);
     }
     #[doc(hidden)]
+    /// [`Scalar::run_piece`] for a piece of a generated `_into` function: `out` handed to
+    /// the copy that runs.
+    #[inline(always)]
+    fn run_piece_into<O: ?Sized, R>(
+        out: &mut O,
+        wide: impl FnOnce(crate::isa::Isa<true>, &mut O) -> R,
+        narrow: impl FnOnce(crate::isa::Isa<false>, &mut O) -> R,
+    ) -> R {
+        let _ = wide;
+        crate::isa::out_of_line(|| narrow(crate::isa::Isa::BASELINE, out))
+    }
+    #[doc(hidden)]
     /// Runs one piece of a split generated function like [`Scalar::run_kernel`], each copy
     /// out of line ([`crate::isa::run_piece`]), so that the pieces stay separate functions.
     #[inline(always)]
@@ -229,6 +241,14 @@ macro_rules! impl_float_scalar {
                 narrow: impl FnOnce(crate::isa::Isa<false>, &mut O),
             ) {
                 crate::isa::run_with(out, wide, narrow);
+            }
+            #[inline(always)]
+            fn run_piece_into<O: ?Sized, R>(
+                out: &mut O,
+                wide: impl FnOnce(crate::isa::Isa<true>, &mut O) -> R,
+                narrow: impl FnOnce(crate::isa::Isa<false>, &mut O) -> R,
+            ) -> R {
+                crate::isa::run_piece_with(out, wide, narrow)
             }
             #[inline(always)]
             fn run_piece<R>(

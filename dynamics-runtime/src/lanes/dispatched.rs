@@ -274,6 +274,15 @@ impl Scalar for F64x4 {
     }
     /// `f64`'s choice of copy.
     #[inline(always)]
+    fn run_piece_into<O: ?Sized, R>(
+        out: &mut O,
+        wide: impl FnOnce(Isa<true>, &mut O) -> R,
+        narrow: impl FnOnce(Isa<false>, &mut O) -> R,
+    ) -> R {
+        <f64 as Scalar>::run_piece_into(out, wide, narrow)
+    }
+    /// `f64`'s choice of copy.
+    #[inline(always)]
     fn run_piece<R>(wide: impl FnOnce(Isa<true>) -> R, narrow: impl FnOnce(Isa<false>) -> R) -> R {
         <f64 as Scalar>::run_piece(wide, narrow)
     }
