@@ -3,7 +3,7 @@
 //! of `out` (filled with NaN before the call), on `f64` and on `F64x4` lanes, for
 //! functions in one piece (the entries written as they are computed), cut into pieces
 //! (each output written by the piece that computes it) and finished by a solve loop (∂q̈,
-//! its result written into `out`).
+//! its right-hand sides written into `out` and solved there), in one piece or several.
 
 use dynamics_runtime::{mechanism, F64x4, Mechanism, Scalar};
 
@@ -18,7 +18,8 @@ mechanism! {
 mechanism! {
     /// A three-joint arm with loads: its derivatives are a triple of matrices.
     pub struct LoadedArmInto;
-    outputs: [mass_matrix_into, inverse_dynamics_derivatives_into, joint_placements_into];
+    outputs: [mass_matrix_into, inverse_dynamics_derivatives_into, joint_placements_into,
+              forward_dynamics_derivatives_into];
     body upper { mass: 2.0, com: [0.0, 0.0, 0.2], shape: cylinder(radius: 0.04, length: 0.4, axis: z) }
     body fore { mass: 1.2, com: [0.15, 0.0, 0.0], shape: rod(length: 0.3, axis: x) }
     body tip { mass: 0.3, com: [0.05, 0.0, 0.01], shape: box(size: [0.1, 0.04, 0.03]) }
@@ -32,7 +33,8 @@ mechanism! {
 mechanism! {
     /// A ten-link spatial chain: its Coriolis matrix and ∂τ are cut into two pieces each.
     pub struct ChainInto;
-    outputs: [coriolis_matrix_into, inverse_dynamics_derivatives_into];
+    outputs: [coriolis_matrix_into, inverse_dynamics_derivatives_into, mass_matrix_inverse_into,
+              forward_dynamics_derivatives_into];
     body l0 { mass: 1.0, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
     body l1 { mass: 1.1, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
     body l2 { mass: 1.2, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
@@ -59,7 +61,7 @@ mechanism! {
     /// The same chain with the baseline copies only: its pieces are plain functions.
     pub struct ChainIntoBaseline;
     isa: baseline;
-    outputs: [coriolis_matrix_into];
+    outputs: [coriolis_matrix_into, forward_dynamics_derivatives_into];
     body l0 { mass: 1.0, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
     body l1 { mass: 1.1, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
     body l2 { mass: 1.2, com: [0.1, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.002], [0.0, 0.002, 0.015]] }
@@ -80,6 +82,20 @@ mechanism! {
     joint j7: revolute(l6 -> l7) { axis: y, at: [0.2, 0.0, 0.05] }
     joint j8: revolute(l7 -> l8) { axis: x, at: [0.2, 0.0, 0.05] }
     joint j9: revolute(l8 -> l9) { axis: z, at: [0.2, 0.0, 0.05] }
+}
+
+mechanism! {
+    /// A free-floating base with two branches: its ∂q̈ is one piece ending in a solve loop.
+        pub struct FreeTreeInto;
+    outputs: [forward_dynamics_derivatives_into];
+    body base { mass: 3.0, com: [0.01, 0.02, -0.03], inertia: [[0.1, 0.01, 0.0], [0.01, 0.12, 0.02], [0.0, 0.02, 0.09]] }
+    body left { mass: 1.0, com: [0.1, 0.0, 0.0], shape: rod(length: 0.2, axis: x) }
+    body right { mass: 0.7, com: [0.0, 0.05, 0.01], shape: box(size: [0.05, 0.1, 0.02]) }
+    body slider { mass: 0.4, com: [0.02, 0.0, 0.01], shape: sphere(radius: 0.03) }
+    joint float: free(ground -> base) { damping: 0.15, armature: 0.02 }
+    joint hip_left: revolute(base -> left) { axis: [0.3, 0.2, 1.0], at: [0.1, 0.1, 0.0], rotation: rpy(0.1, 0.2, 0.3), damping: 0.2 }
+    joint hip_right: revolute(base -> right) { axis: y, at: [0.1, -0.1, 0.0], armature: 0.05 }
+    joint slide: prismatic(left -> slider) { axis: x, at: [0.2, 0.0, 0.0] }
 }
 
 /// The bits of every number in a value (arrays, tuples, nested), in order.
@@ -276,21 +292,64 @@ fn functions_cut_into_pieces_write_each_output_in_the_piece_that_computes_it() {
             &what("∂τ"),
         );
         assert_same(
+            ChainInto::mass_matrix_inverse(&q),
+            [[n; N]; N],
+            |o| ChainInto::mass_matrix_inverse_into(&q, o),
+            &what("M⁻¹"),
+        );
+        assert_same(
+            ChainInto::forward_dynamics_derivatives(&q, &v, &a),
+            ([[n; N]; N], [[n; N]; N]),
+            |o| ChainInto::forward_dynamics_derivatives_into(&q, &v, &a, o),
+            &what("∂q̈ (three pieces, then the solve)"),
+        );
+        assert_same(
             ChainIntoBaseline::coriolis_matrix(&q, &v),
             [[n; N]; N],
             |o| ChainIntoBaseline::coriolis_matrix_into(&q, &v, o),
             &what("coriolis_matrix, baseline copies only"),
         );
+        assert_same(
+            ChainIntoBaseline::forward_dynamics_derivatives(&q, &v, &a),
+            ([[n; N]; N], [[n; N]; N]),
+            |o| ChainIntoBaseline::forward_dynamics_derivatives_into(&q, &v, &a, o),
+            &what("∂q̈, baseline copies only"),
+        );
         let lanes = |k: usize| -> [F64x4; N] {
             std::array::from_fn(|i| F64x4::from_fn(|l| wobble(seed * 97 + k * 41 + i * 4 + l)))
         };
-        let (q, v) = (lanes(0), lanes(1));
+        let (q, v, a) = (lanes(0), lanes(1), lanes(2));
         let n = F64x4::splat(f64::NAN);
         assert_same(
             ChainInto::coriolis_matrix(&q, &v),
             [[n; N]; N],
             |o| ChainInto::coriolis_matrix_into(&q, &v, o),
             &what("coriolis_matrix on F64x4"),
+        );
+        assert_same(
+            ChainInto::forward_dynamics_derivatives(&q, &v, &a),
+            ([[n; N]; N], [[n; N]; N]),
+            |o| ChainInto::forward_dynamics_derivatives_into(&q, &v, &a, o),
+            &what("∂q̈ on F64x4"),
+        );
+    }
+}
+
+#[test]
+fn a_solve_loop_solves_in_place_in_out() {
+    const NQ: usize = <FreeTreeInto as Mechanism>::NQ;
+    const N: usize = <FreeTreeInto as Mechanism>::NV;
+    let n = f64::NAN;
+    for seed in 0..5 {
+        let (mut q, v, tau): ([f64; NQ], [f64; N], [f64; N]) =
+            (state(seed + 600), state(seed + 700), state(seed + 800));
+        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        assert_same(
+            FreeTreeInto::forward_dynamics_derivatives(&q, &v, &tau),
+            ([[n; N]; N], [[n; N]; N]),
+            |o| FreeTreeInto::forward_dynamics_derivatives_into(&q, &v, &tau, o),
+            &format!("free tree ∂q̈, state {seed}"),
         );
     }
 }

@@ -171,51 +171,26 @@ impl Output {
 /// (`in_kernel`) it runs in the kernel's copy (`WIDE`); outside, in the copy
 /// `T::run_kernel` chooses.
 fn tree_solve_expr(s: &TreeSolve, in_kernel: bool) -> TokenStream {
-    let runtime = crate::runtime_path();
-    let n = Literal::usize_unsuffixed(s.parents.len());
-    let p = Literal::usize_unsuffixed(s.factor.len());
-    let parents = s.parents.iter().map(|parent| match parent {
-        Some(i) => {
-            let i = Literal::usize_unsuffixed(*i);
-            quote!(::core::option::Option::Some(#i))
-        }
-        None => quote!(::core::option::Option::None),
-    });
-    let factor = s.factor.iter().map(|&x| var(x));
-    let pivots = s.inverse_pivot.iter().map(|&x| var(x));
+    let header = tree_solve_header(s);
     let rhs: Vec<TokenStream> = s
         .rhs
         .iter()
         .map(|b| Output::Matrix(b.clone()).expr())
         .collect();
-    let groups = s.width_groups();
+    let target = |k: usize| {
+        let k = syn::Index::from(k);
+        quote!(&mut solved.#k)
+    };
+    let returned = if s.rhs.len() == 1 {
+        quote!(solved.0)
+    } else {
+        quote!(solved)
+    };
     let solves = |wide: TokenStream| {
-        let calls = groups.iter().map(|(width, members)| {
-            let solved: Vec<syn::Index> = members.iter().map(|&k| syn::Index::from(k)).collect();
-            let c = Literal::usize_unsuffixed(*width);
-            let k = Literal::usize_unsuffixed(members.len());
-            match s.sweeps {
-                Sweeps::All => quote! {
-                    #runtime::tree_ldlt::solve_columns::<T, #wide, #n, #p, #c, #k>(
-                        isa, &TREE, &factor, &inverse_pivot, [#(&mut solved.#solved),*],
-                    );
-                },
-                Sweeps::LastOfInverse => quote! {
-                    #runtime::tree_ldlt::solve_lower_columns::<T, #wide, #n, #p, #c, #k>(
-                        isa, &TREE, &factor, [#(&mut solved.#solved),*],
-                    );
-                    #(#runtime::tree_ldlt::mirror_upper_triangle(&mut solved.#solved);)*
-                },
-            }
-        });
-        let returned = if s.rhs.len() == 1 {
-            quote!(solved.0)
-        } else {
-            quote!(solved)
-        };
+        let calls = tree_solve_calls(s, &wide, &target);
         quote! {
             let mut solved = (#(#rhs,)*);
-            #(#calls)*
+            #calls
             #returned
         }
     };
@@ -233,12 +208,106 @@ fn tree_solve_expr(s: &TreeSolve, in_kernel: bool) -> TokenStream {
         }
     };
     quote!({
+        #header
+        #run
+    })
+}
+
+/// The solve of an [`Output::Solved`] in place in a `_into` function's `out`, whose
+/// right-hand sides the statements before it have written there: in the kernel's copy
+/// (`in_kernel`), or, after the pieces of a split function, in the copy
+/// `T::run_kernel_into` chooses (the baseline copy alone without `dispatch`).
+fn tree_solve_into(s: &TreeSolve, in_kernel: bool, dispatch: bool) -> TokenStream {
+    let header = tree_solve_header(s);
+    let single = s.rhs.len() == 1;
+    let target = |k: usize| {
+        if single {
+            quote!(&mut *out)
+        } else {
+            let k = syn::Index::from(k);
+            quote!(&mut out.#k)
+        }
+    };
+    let run = if in_kernel {
+        tree_solve_calls(s, &quote!(WIDE), &target)
+    } else if dispatch {
+        let wide = tree_solve_calls(s, &quote!(true), &target);
+        let narrow = tree_solve_calls(s, &quote!(false), &target);
+        quote! {
+            T::run_kernel_into(
+                out,
+                #[inline(always)]
+                |isa, out| { #wide },
+                #[inline(always)]
+                |isa, out| { #narrow },
+            );
+        }
+    } else {
+        let runtime = crate::runtime_path();
+        let calls = tree_solve_calls(s, &quote!(WIDE), &target);
+        quote! {
+            const WIDE: bool = false;
+            let isa = #runtime::isa::Isa::BASELINE;
+            #calls
+        }
+    };
+    quote!({
+        #header
+        #run
+    })
+}
+
+/// The constants of a solve block: the coordinate tree, the factor and the pivots.
+fn tree_solve_header(s: &TreeSolve) -> TokenStream {
+    let runtime = crate::runtime_path();
+    let n = Literal::usize_unsuffixed(s.parents.len());
+    let p = Literal::usize_unsuffixed(s.factor.len());
+    let parents = s.parents.iter().map(|parent| match parent {
+        Some(i) => {
+            let i = Literal::usize_unsuffixed(*i);
+            quote!(::core::option::Option::Some(#i))
+        }
+        None => quote!(::core::option::Option::None),
+    });
+    let factor = s.factor.iter().map(|&x| var(x));
+    let pivots = s.inverse_pivot.iter().map(|&x| var(x));
+    quote! {
         const TREE: #runtime::tree_ldlt::CoordinateTree<#n, #p> =
             #runtime::tree_ldlt::CoordinateTree::new([#(#parents),*]);
         let factor: [T; #p] = [#(#factor),*];
         let inverse_pivot: [T; #n] = [#(#pivots),*];
-        #run
-    })
+    }
+}
+
+/// The `tree_ldlt` calls that solve the right-hand sides in place, those of one width in
+/// one call, `target(k)` the `&mut` of the k-th.
+fn tree_solve_calls(
+    s: &TreeSolve,
+    wide: &TokenStream,
+    target: &dyn Fn(usize) -> TokenStream,
+) -> TokenStream {
+    let runtime = crate::runtime_path();
+    let n = Literal::usize_unsuffixed(s.parents.len());
+    let p = Literal::usize_unsuffixed(s.factor.len());
+    let calls = s.width_groups().into_iter().map(|(width, members)| {
+        let targets: Vec<TokenStream> = members.iter().map(|&k| target(k)).collect();
+        let c = Literal::usize_unsuffixed(width);
+        let k = Literal::usize_unsuffixed(members.len());
+        match s.sweeps {
+            Sweeps::All => quote! {
+                #runtime::tree_ldlt::solve_columns::<T, #wide, #n, #p, #c, #k>(
+                    isa, &TREE, &factor, &inverse_pivot, [#(#targets),*],
+                );
+            },
+            Sweeps::LastOfInverse => quote! {
+                #runtime::tree_ldlt::solve_lower_columns::<T, #wide, #n, #p, #c, #k>(
+                    isa, &TREE, &factor, [#(#targets),*],
+                );
+                #(#runtime::tree_ldlt::mirror_upper_triangle(#targets);)*
+            },
+        }
+    });
+    quote!(#(#calls)*)
 }
 
 /// The function described by `spec`, its statements in the order and pieces of `plan`
@@ -313,7 +382,8 @@ pub(crate) fn function(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> Token
 /// nor copied out (for the quadruped's 18 × 18 mass matrix 0.74 of the time in `f64`,
 /// 0.61 on `F64x4`). Cut into pieces, each piece writes the outputs it computes (the plan
 /// hands them back, [`Plan::handing_back`]) and the function the outputs that are leaves.
-/// A function finished by a solve loop writes its returned value into `out`, for now.
+/// A function finished by a solve loop writes its right-hand sides into `out` and solves
+/// them there, in place.
 #[must_use]
 pub(crate) fn function_into(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> TokenStream {
     let ops = graph.ops();
@@ -329,52 +399,49 @@ pub(crate) fn function_into(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> 
     );
     let docs = doc_attrs(&link, &count, &spec.output);
     let places = output_places(&spec.output);
-    let direct = places.is_some();
-    let (params, args): (Vec<TokenStream>, Vec<Ident>) = spec
-        .args
-        .iter()
-        .map(|arg| {
-            let used = !direct
-                || plan.pieces.iter().any(|p| p.arrays.contains(&arg.array))
-                || plan
-                    .output_leaves
-                    .iter()
-                    .any(|n| matches!(ops[n.index()], Op::Input(r) if r.array == arg.array));
-            let ident = if used {
-                format_ident!("{}", arg.array.name())
-            } else {
-                format_ident!("_{}", arg.array.name())
-            };
-            let len = Literal::usize_unsuffixed(arg.len);
-            (quote!(#ident: &[T; #len]), ident)
-        })
-        .unzip();
-    let body = match places {
-        Some(places) if plan.pieces.len() > 1 => plan.chained_pieces_into(&ops, spec, &places),
-        Some(places) => {
-            let body = plan.piece_body_into(&ops, 0, &places);
-            if !spec.dispatch || !worth_dispatching(&count) {
-                let prelude = plan.baseline_prelude(0, &spec.output);
-                quote!(#prelude #body)
-            } else {
-                let (mut kernel_params, args) = array_params(&plan.pieces[0].arrays, spec);
-                kernel_params.insert(0, plan.isa_param(0, &spec.output));
-                quote! {
-                    #[inline(always)]
-                    fn kernel<T: #trait_, const WIDE: bool>(#(#kernel_params,)* out: &mut #ret) {
-                        #body
-                    }
-                    T::run_kernel_into(
-                        out,
-                        #[inline(always)]
-                        |isa, out| kernel::<T, true>(isa #(, #args)*, out),
-                        #[inline(always)]
-                        |isa, out| kernel::<T, false>(isa #(, #args)*, out),
-                    );
+    let params = spec.args.iter().map(|arg| {
+        let used = plan.pieces.iter().any(|p| p.arrays.contains(&arg.array))
+            || plan
+                .output_leaves
+                .iter()
+                .any(|n| matches!(ops[n.index()], Op::Input(r) if r.array == arg.array));
+        let ident = if used {
+            format_ident!("{}", arg.array.name())
+        } else {
+            format_ident!("_{}", arg.array.name())
+        };
+        let len = Literal::usize_unsuffixed(arg.len);
+        quote!(#ident: &[T; #len])
+    });
+    let body = if plan.pieces.len() > 1 {
+        plan.chained_pieces_into(&ops, spec, &places)
+    } else {
+        let statements = plan.piece_body_into(&ops, 0, &places, &[]);
+        let solve = match &spec.output {
+            Output::Solved(s) => Some(tree_solve_into(s, true, spec.dispatch)),
+            _ => None,
+        };
+        if !spec.dispatch || !worth_dispatching(&count) {
+            let prelude = plan.baseline_prelude(0, &spec.output);
+            quote!(#prelude #statements #solve)
+        } else {
+            let (mut kernel_params, args) = array_params(&plan.pieces[0].arrays, spec);
+            kernel_params.insert(0, plan.isa_param(0, &spec.output));
+            quote! {
+                #[inline(always)]
+                fn kernel<T: #trait_, const WIDE: bool>(#(#kernel_params,)* out: &mut #ret) {
+                    #statements
+                    #solve
                 }
+                T::run_kernel_into(
+                    out,
+                    #[inline(always)]
+                    |isa, out| kernel::<T, true>(isa #(, #args)*, out),
+                    #[inline(always)]
+                    |isa, out| kernel::<T, false>(isa #(, #args)*, out),
+                );
             }
         }
-        _ => quote!(*out = Self::#name(#(#args),*);),
     };
     let allows = generated_allows();
     quote! {
@@ -387,14 +454,10 @@ pub(crate) fn function_into(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> 
 }
 
 /// Where each node of `output` goes in `out` (`(*out)[i][j]`, `(*out).0[i][j]`, ...), a node
-/// in as many places as it fills; `None` for an output finished by a solve loop, whose
-/// entries are not nodes.
-fn output_places(output: &Output) -> Option<HashMap<Node, Vec<TokenStream>>> {
-    fn walk(
-        output: &Output,
-        place: &TokenStream,
-        acc: &mut HashMap<Node, Vec<TokenStream>>,
-    ) -> bool {
+/// in as many places as it fills; for an output finished by a solve loop, where its
+/// right-hand sides go, to be solved there in place.
+fn output_places(output: &Output) -> HashMap<Node, Vec<TokenStream>> {
+    fn walk(output: &Output, place: &TokenStream, acc: &mut HashMap<Node, Vec<TokenStream>>) {
         let mut at = |n: Node, place: TokenStream| acc.entry(n).or_default().push(place);
         match output {
             Output::Scalar(n) => at(*n, place.clone()),
@@ -415,25 +478,21 @@ fn output_places(output: &Output) -> Option<HashMap<Node, Vec<TokenStream>>> {
             Output::Tuple(items) => {
                 for (k, item) in items.iter().enumerate() {
                     let k = syn::Index::from(k);
-                    if !walk(item, &quote!(#place.#k), acc) {
-                        return false;
-                    }
+                    walk(item, &quote!(#place.#k), acc);
                 }
             }
             Output::Stack(items) => {
                 for (k, item) in items.iter().enumerate() {
                     let k = Literal::usize_unsuffixed(k);
-                    if !walk(item, &quote!(#place[#k]), acc) {
-                        return false;
-                    }
+                    walk(item, &quote!(#place[#k]), acc);
                 }
             }
-            Output::Solved(_) => return false,
+            Output::Solved(s) => walk(&s.returned(), place, acc),
         }
-        true
     }
     let mut places = HashMap::new();
-    walk(output, &quote!((*out)), &mut places).then_some(places)
+    walk(output, &quote!((*out)), &mut places);
+    places
 }
 
 /// The lints a generated function allows: it is long, its constants are printed to the
@@ -547,12 +606,14 @@ impl Plan {
 
     /// The statements of piece `p` of a `_into` function: those of [`Plan::piece_body`],
     /// each followed by the writes of the values it defines into their `places` in `out`,
-    /// then the next piece's carry (the plan hands its outputs back, so none is carried).
+    /// then the next piece's carry (the plan hands its outputs back, so none is carried)
+    /// and the outputs in `kept` (a solve's factor and pivots, which the function reads).
     fn piece_body_into(
         &self,
         ops: &[Op],
         p: usize,
         places: &HashMap<Node, Vec<TokenStream>>,
+        kept: &[Node],
     ) -> TokenStream {
         let piece = &self.pieces[p];
         let writes = |n: Node| {
@@ -578,12 +639,21 @@ impl Plan {
                 stmts.extend(writes(n));
             }
         }
-        // A piece before the last returns the values the next one reads.
+        // A piece before the last returns the values the next one reads, and each piece
+        // the outputs it computes that the function needs after the pieces (`kept`).
         let carry = self.pieces.get(p + 1).map(|next| {
             let names = next.carry_in.iter().map(|&n| var(n));
             quote!([#(#names),*])
         });
-        quote!(#(#stmts)* #carry)
+        let kept = (!kept.is_empty()).then(|| {
+            let names = kept.iter().map(|&n| var(n));
+            quote!([#(#names),*])
+        });
+        let result = match (&carry, &kept) {
+            (None, None) => None,
+            _ => Some(carry_and_outputs(carry, kept)),
+        };
+        quote!(#(#stmts)* #result)
     }
 
     /// Whether piece `p` returns the function's output: the last piece, unless the pieces
@@ -767,7 +837,8 @@ impl Plan {
 impl Plan {
     /// The body of a split `_into` function (a plan that hands its outputs back): each
     /// piece a kernel taking `out` too, writing the outputs it computes and returning the
-    /// next piece's carry, then the outputs that are leaves written by the function itself.
+    /// next piece's carry (and a solve's factor and pivots it computes), then the outputs
+    /// that are leaves written by the function itself, then the solve in `out`, if any.
     fn chained_pieces_into(
         &self,
         ops: &[Op],
@@ -777,6 +848,11 @@ impl Plan {
         let trait_ = &spec.scalar_trait;
         let ret = spec.output.ty();
         let n = self.pieces.len();
+        // What the solve after the pieces reads besides `out`: its factor and pivots.
+        let solve_reads: BTreeSet<Node> = match &spec.output {
+            Output::Solved(s) => s.factor.iter().chain(&s.inverse_pivot).copied().collect(),
+            _ => BTreeSet::new(),
+        };
         let mut fns = Vec::new();
         let mut calls = Vec::new();
         for (p, piece) in self.pieces.iter().enumerate() {
@@ -790,15 +866,24 @@ impl Plan {
                 args.push(quote!(&#carry));
             }
             params.push(quote!(out: &mut #ret));
-            let returned = self.pieces.get(p + 1).map_or_else(
-                || quote!(()),
-                |next| {
-                    let k = Literal::usize_unsuffixed(next.carry_in.len());
-                    quote!([T; #k])
-                },
-            );
+            let kept: Vec<Node> = piece
+                .outputs
+                .iter()
+                .copied()
+                .filter(|n| solve_reads.contains(n))
+                .collect();
+            let array = |k: usize| {
+                let k = Literal::usize_unsuffixed(k);
+                quote!([T; #k])
+            };
+            let carry_type = self
+                .pieces
+                .get(p + 1)
+                .map(|next| array(next.carry_in.len()));
+            let kept_type = (!kept.is_empty()).then(|| array(kept.len()));
+            let returned = carry_and_outputs(carry_type, kept_type);
             let doc = format!(" Piece {} of {n}.", p + 1);
-            let body = self.piece_body_into(ops, p, places);
+            let body = self.piece_body_into(ops, p, places, &kept);
             let run = if spec.dispatch {
                 params.insert(0, self.isa_param(p, &spec.output));
                 fns.push(quote! {
@@ -829,27 +914,34 @@ impl Plan {
                 });
                 quote!(#part(#(#args,)* out))
             };
-            calls.push(match self.pieces.get(p + 1) {
-                Some(_) => {
-                    let next = format_ident!("carry_{}", p + 1);
-                    quote!(let #next = #run;)
+            let next = self.pieces.get(p + 1).map(|_| {
+                let next = format_ident!("carry_{}", p + 1);
+                quote!(#next)
+            });
+            let kept = (!kept.is_empty()).then(|| {
+                let names = kept.iter().map(|&n| var(n));
+                quote!([#(#names),*])
+            });
+            calls.push(match (&next, &kept) {
+                (None, None) => quote!(#run;),
+                _ => {
+                    let pattern = carry_and_outputs(next, kept);
+                    quote!(let #pattern = #run;)
                 }
-                None => quote!(#run;),
             });
         }
         let mut leaves = Vec::new();
         for &node in &self.output_leaves {
             leaves.push(let_node(node, ops[node.index()]));
             let v = var(node);
-            leaves.extend(
-                places
-                    .get(&node)
-                    .into_iter()
-                    .flatten()
-                    .map(|place| quote!(#place = #v;)),
-            );
+            let writes = places.get(&node).into_iter().flatten();
+            leaves.extend(writes.map(|place| quote!(#place = #v;)));
         }
-        quote!(#(#fns)* #(#calls)* #(#leaves)*)
+        let solve = match &spec.output {
+            Output::Solved(s) => Some(tree_solve_into(s, false, spec.dispatch)),
+            _ => None,
+        };
+        quote!(#(#fns)* #(#calls)* #(#leaves)* #solve)
     }
 }
 

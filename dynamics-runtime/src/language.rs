@@ -91,8 +91,8 @@
 //! by the piece that computes it). For a large matrix that is the faster call: the 18-dof
 //! quadruped's mass matrix takes 0.74 of the time on `f64` and 0.61 on `F64x4` lanes, 64
 //! results in memory (BENCHMARKS.md, "Many states per call"). An output finished by a
-//! solve loop (`forward_dynamics_derivatives`, M⁻¹ of a large tree) is returned and then
-//! written into `out`, for now.
+//! solve loop (`forward_dynamics_derivatives`, M⁻¹ of a large tree) has its right-hand
+//! sides written into `out` and solved there in place.
 //!
 //! Every function's arguments come in the order `q`, `v`, then `a` or `tau`, then `p` (only
 //! when the mechanism declares `parameters`), then `loads` (only for the functions marked
