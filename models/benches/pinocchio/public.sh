@@ -83,12 +83,13 @@ BASELINE=public_pinocchio
 # Every output of a URDF robot without frames or constraints (joint_reactions and the
 # single kinematics outputs are built and counted, not timed: Pinocchio has no
 # counterpart call).
-OUTPUTS="inverse_dynamics, mass_matrix, forward_dynamics, gravity, bias, coriolis_matrix,
+OUTPUTS="inverse_dynamics, mass_matrix_into, forward_dynamics, gravity, bias, coriolis_matrix_into,
               kinetic_energy, joint_reactions, joint_placements, forward_kinematics,
               joint_velocities, joint_acceleration_biases, joint_jacobians,
               joint_jacobians_world, joint_jacobians_world_time_variation, center_of_mass,
-              center_of_mass_jacobian, centroidal_momentum_matrix, centroidal_bias,
-              inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse"
+              center_of_mass_jacobian, centroidal_momentum_matrix_into, centroidal_bias,
+              inverse_dynamics_derivatives_into, forward_dynamics_derivatives_into,
+              mass_matrix_inverse_into"
 
 : > "$OUT/pinocchio.tsv"
 : > "$OUT/build.tsv"
@@ -224,7 +225,15 @@ ROWS = [("rnea", ["rnea"], "inverse_dynamics"),
         ("dccrba", ["dccrba"], "centroidal_bias"),
         ("computeRNEADerivatives", ["computeRNEADerivatives"], "inverse_dynamics_derivatives"),
         ("computeABADerivatives", ["computeABADerivatives"], "forward_dynamics_derivatives"),
-        ("computeMinverse", ["computeMinverse"], "mass_matrix_inverse")]
+        ("computeMinverse", ["computeMinverse"], "mass_matrix_inverse"),
+        # The large matrices written into the caller's storage (`_into`), as Pinocchio
+        # writes into its `Data`.
+        ("crba", ["crba", "crba_world"], "mass_matrix_into"),
+        ("ccrba", ["ccrba"], "centroidal_momentum_matrix_into"),
+        ("computeCoriolisMatrix", ["computeCoriolisMatrix"], "coriolis_matrix_into"),
+        ("computeRNEADerivatives", ["computeRNEADerivatives"], "inverse_dynamics_derivatives_into"),
+        ("computeABADerivatives", ["computeABADerivatives"], "forward_dynamics_derivatives_into"),
+        ("computeMinverse", ["computeMinverse"], "mass_matrix_inverse_into")]
 
 robots = [line.split("\t")[:3] for line in open(os.path.join(out_dir, "robots.tsv"))]
 pin, pin_states, _, header = results.pinocchio(os.path.join(out_dir, "pinocchio.tsv"))

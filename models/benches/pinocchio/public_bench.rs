@@ -10,7 +10,10 @@
 //! C v; with a `rotation_tolerance` T, which changes the model by up to T, ≤ 1e-10 + 100 T,
 //! from `PUBLIC_ROTATION_TOLERANCE`), prints the states' fingerprint (matched by
 //! `public.sh` against the timing program's), then times each output as `benches/dynamics.rs`
-//! does: one call per state, the states in turn, `<robot>/<output>/generated`.
+//! does: one call per state, the states in turn, `<robot>/<output>/generated`. The large
+//! matrices are timed again written into the caller's storage, `<output>_into` (checked
+//! first to write, bit for bit, what their functions return), as Pinocchio writes into its
+//! `Data`.
 
 use criterion::{criterion_group, criterion_main, Criterion, SamplingMode};
 use dynamics_runtime::Mechanism;
@@ -223,10 +226,70 @@ fn states(path: &str) -> Vec<State> {
         );
         let inverse = Robot::mass_matrix_inverse(q);
         check("M⁻¹", k, inverse.as_flattened(), &rows(&s["minv"], "minv"));
+        into_twins_agree(&state, k);
         out.push(state);
     }
     assert!(!out.is_empty(), "{path}: no samples");
     out
+}
+
+/// The `_into` twins write, bit for bit, what their functions return (so what the checks
+/// above held to Pinocchio's), into storage first filled with NaN.
+fn into_twins_agree(state: &State, k: usize) {
+    fn same<O: PartialEq + std::fmt::Debug>(
+        what: &str,
+        k: usize,
+        returned: O,
+        mut out: O,
+        into: impl FnOnce(&mut O),
+    ) {
+        into(&mut out);
+        assert!(
+            format!("{returned:?}") == format!("{out:?}"),
+            "{what}_into differs from {what} at sample {k}"
+        );
+    }
+    let (q, v, a, tau) = (&state.q, &state.v, &state.a, &state.tau);
+    let n = f64::NAN;
+    let nan = [[n; NV]; NV];
+    same("mass_matrix", k, Robot::mass_matrix(q), nan, |o| {
+        Robot::mass_matrix_into(q, o)
+    });
+    same(
+        "centroidal_momentum_matrix",
+        k,
+        Robot::centroidal_momentum_matrix(q),
+        [[n; NV]; 6],
+        |o| Robot::centroidal_momentum_matrix_into(q, o),
+    );
+    same(
+        "coriolis_matrix",
+        k,
+        Robot::coriolis_matrix(q, v),
+        nan,
+        |o| Robot::coriolis_matrix_into(q, v, o),
+    );
+    same(
+        "inverse_dynamics_derivatives",
+        k,
+        Robot::inverse_dynamics_derivatives(q, v, a),
+        (nan, nan),
+        |o| Robot::inverse_dynamics_derivatives_into(q, v, a, o),
+    );
+    same(
+        "forward_dynamics_derivatives",
+        k,
+        Robot::forward_dynamics_derivatives(q, v, tau),
+        (nan, nan),
+        |o| Robot::forward_dynamics_derivatives_into(q, v, tau, o),
+    );
+    same(
+        "mass_matrix_inverse",
+        k,
+        Robot::mass_matrix_inverse(q),
+        nan,
+        |o| Robot::mass_matrix_inverse_into(q, o),
+    );
 }
 
 /// FNV-1a over the bits of q, v, a, τ, state by state (as the timing program's).
@@ -260,6 +323,24 @@ macro_rules! timed {
         $(
             $group.bench_function(concat!($name, "/generated"), |b| {
                 b.iter_custom(|iters| cycle(&$states, iters, |$s| $call))
+            });
+        )*
+    };
+}
+
+/// As `timed!`, for the `_into` twins: `$out` (made by `$init`, once per benchmark) the
+/// caller's storage they write into, kept by reference after each call.
+macro_rules! timed_into {
+    ($group:ident, $states:ident, $($name:literal => $init:expr, |$s:ident, $out:ident| $call:expr),* $(,)?) => {
+        $(
+            $group.bench_function(concat!($name, "/generated"), |b| {
+                let mut $out = $init;
+                b.iter_custom(|iters| {
+                    cycle(&$states, iters, |$s| {
+                        $call;
+                        black_box(&mut $out);
+                    })
+                })
             });
         )*
     };
@@ -300,6 +381,18 @@ fn public(c: &mut Criterion) {
             Robot::forward_dynamics_derivatives(&s.q, &s.v, &s.tau)
         },
         "mass_matrix_inverse" => |s| Robot::mass_matrix_inverse(&s.q),
+    );
+    let matrix = || [[0.0; NV]; NV];
+    timed_into!(group, states,
+        "mass_matrix_into" => matrix(), |s, out| Robot::mass_matrix_into(&s.q, &mut out),
+        "centroidal_momentum_matrix_into" => [[0.0; NV]; 6],
+            |s, out| Robot::centroidal_momentum_matrix_into(&s.q, &mut out),
+        "coriolis_matrix_into" => matrix(), |s, out| Robot::coriolis_matrix_into(&s.q, &s.v, &mut out),
+        "inverse_dynamics_derivatives_into" => (matrix(), matrix()),
+            |s, out| Robot::inverse_dynamics_derivatives_into(&s.q, &s.v, &s.a, &mut out),
+        "forward_dynamics_derivatives_into" => (matrix(), matrix()),
+            |s, out| Robot::forward_dynamics_derivatives_into(&s.q, &s.v, &s.tau, &mut out),
+        "mass_matrix_inverse_into" => matrix(), |s, out| Robot::mass_matrix_inverse_into(&s.q, &mut out),
     );
     group.finish();
 }
