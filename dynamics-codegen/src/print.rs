@@ -80,6 +80,17 @@
 //! a spec with [`FunctionSpec::dispatch`] off (a mechanism declared with `isa: baseline;`),
 //! its pieces then `#[inline(never)]` functions called in turn.
 //!
+//! # Writing into the caller's storage
+//!
+//! An output asked for as `<name>_into` also gets [`function_into`]: the same arguments and
+//! `out: &mut R`, `R` the function's result type, nothing returned. Its kernel follows each
+//! statement with the writes of the value it defines into that value's places in `out`
+//! (`(*out)[i][j] = vN;`, a value in as many places as it fills), so that `out` holds, bit
+//! for bit, what the function returns, every entry written once; it is run by
+//! `T::run_kernel_into(out, |isa, out| kernel::<T, true>(isa, q, out), ..)`. Cut into
+//! pieces, each piece takes `out` and writes the outputs it computes (none is carried);
+//! finished by a solve loop, the right-hand sides are written into `out` and solved there.
+//!
 
 use crate::ir::{FunctionSpec, Output, Sweeps, TreeSolve};
 use crate::passes::fusion::Fused;
