@@ -7,8 +7,9 @@
 //!   along q ⊕ t e_j (the free base moved on its manifold by `integrate_configuration`, so
 //!   the q-columns are in the tangent space, as Pinocchio's) and along v, and M⁻¹ M = 1.
 
-use dynamics_runtime::mechanism;
+use dynamics_runtime::{mechanism, Mechanism};
 use dynamics_tests::free_tree;
+use dynamics_tests::into_twins::{assert_same, state};
 use serde::Deserialize;
 
 mechanism! {
@@ -49,7 +50,7 @@ mechanism! {
     /// A free-floating base with two branches, one ending in a slider.
     pub struct FreeTreeDerivatives;
     outputs: [inverse_dynamics, forward_dynamics, mass_matrix, inverse_dynamics_derivatives,
-              forward_dynamics_derivatives, mass_matrix_inverse, momentum_derivatives];
+              forward_dynamics_derivatives_into, mass_matrix_inverse, momentum_derivatives];
     body base { mass: 3.0, com: [0.01, 0.02, -0.03], inertia: [[0.1, 0.01, 0.0], [0.01, 0.12, 0.02], [0.0, 0.02, 0.09]] }
     body left { mass: 1.0, com: [0.1, 0.0, 0.0], shape: rod(length: 0.2, axis: x) }
     body right { mass: 0.7, com: [0.0, 0.05, 0.01], shape: box(size: [0.05, 0.1, 0.02]) }
@@ -492,8 +493,9 @@ mechanism! {
     /// A three-joint arm with a force in world axes, a body-axes wrench and a couple: its
     /// derivatives have a third matrix, with respect to the `loads` inputs.
     pub struct LoadedArmDerivatives;
-    outputs: [inverse_dynamics, forward_dynamics, mass_matrix, coriolis_matrix,
-              inverse_dynamics_derivatives, forward_dynamics_derivatives, momentum_derivatives];
+    outputs: [inverse_dynamics, forward_dynamics, mass_matrix_into, coriolis_matrix,
+              inverse_dynamics_derivatives_into, forward_dynamics_derivatives, momentum_derivatives,
+              joint_placements_into];
     body upper { mass: 2.0, com: [0.0, 0.0, 0.2], shape: cylinder(radius: 0.04, length: 0.4, axis: z) }
     body fore { mass: 1.2, com: [0.15, 0.0, 0.0], shape: rod(length: 0.3, axis: x) }
     body tip { mass: 0.3, com: [0.05, 0.0, 0.01], shape: box(size: [0.1, 0.04, 0.03]) }
@@ -872,4 +874,63 @@ fn momentum_derivatives_with_loads_are_the_dual_number_derivatives() {
     // Neither the second derivatives of M nor the loads' part is all zero.
     assert!(dpdot_dq.iter().flatten().any(|x| x.abs() > 1e-3));
     assert!(dpdot_dl.iter().flatten().any(|x| x.abs() > 1e-3));
+}
+
+/// The `_into` twins (`tests/generated_into.rs` has the rest): with loads, ∂τ is a triple
+/// and joint placements a stack of poses, both written whole.
+#[test]
+fn the_loaded_arms_into_twins_write_a_triple_of_matrices_and_a_stack_of_poses_whole() {
+    const N: usize = <LoadedArmDerivatives as Mechanism>::NV;
+    const L: usize = <LoadedArmDerivatives as Mechanism>::NUM_LOAD_INPUTS;
+    let n = f64::NAN;
+    for seed in 0..10 {
+        let (q, v, a, loads): ([f64; N], [f64; N], [f64; N], [f64; L]) = (
+            state(seed),
+            state(seed + 7),
+            state(seed + 11),
+            state(seed + 13),
+        );
+        let what = |f: &str| format!("loaded arm {f}, state {seed}");
+        assert_same(
+            LoadedArmDerivatives::mass_matrix(&q),
+            [[n; N]; N],
+            |o| LoadedArmDerivatives::mass_matrix_into(&q, o),
+            &what("mass_matrix"),
+        );
+        assert_same(
+            LoadedArmDerivatives::inverse_dynamics_derivatives(&q, &v, &a, &loads),
+            ([[n; N]; N], [[n; N]; N], [[n; L]; N]),
+            |o| LoadedArmDerivatives::inverse_dynamics_derivatives_into(&q, &v, &a, &loads, o),
+            &what("∂τ"),
+        );
+        let poses = LoadedArmDerivatives::joint_placements(&q);
+        let nan_poses = poses.map(|(r, t)| (r.map(|row| row.map(|_| n)), t.map(|_| n)));
+        assert_same(
+            poses,
+            nan_poses,
+            |o| LoadedArmDerivatives::joint_placements_into(&q, o),
+            &what("joint_placements"),
+        );
+    }
+}
+
+/// The free tree's ∂q̈ is one piece ending in a solve loop: its twin writes the right-hand
+/// sides into `out` and solves them there.
+#[test]
+fn the_free_trees_into_twin_solves_its_one_piece_solve_loop_in_place() {
+    const NQ: usize = <FreeTreeDerivatives as Mechanism>::NQ;
+    const N: usize = <FreeTreeDerivatives as Mechanism>::NV;
+    let n = f64::NAN;
+    for seed in 0..5 {
+        let (mut q, v, tau): ([f64; NQ], [f64; N], [f64; N]) =
+            (state(seed + 600), state(seed + 700), state(seed + 800));
+        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        assert_same(
+            FreeTreeDerivatives::forward_dynamics_derivatives(&q, &v, &tau),
+            ([[n; N]; N], [[n; N]; N]),
+            |o| FreeTreeDerivatives::forward_dynamics_derivatives_into(&q, &v, &tau, o),
+            &format!("free tree ∂q̈, state {seed}"),
+        );
+    }
 }

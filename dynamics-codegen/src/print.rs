@@ -334,25 +334,7 @@ pub(crate) fn function(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> Token
     let count = crate::ir::op_count(graph, &spec.output);
     let docs = doc_attrs(&spec.doc, &count, &spec.output);
 
-    let read_by_output = |array: Array| {
-        plan.hands_back
-            && plan
-                .output_leaves
-                .iter()
-                .any(|n| matches!(ops[n.index()], Op::Input(r) if r.array == array))
-    };
-    let used = |array: Array| {
-        plan.pieces.iter().any(|p| p.arrays.contains(&array)) || read_by_output(array)
-    };
-    let params = spec.args.iter().map(|arg| {
-        let ident = if used(arg.array) {
-            format_ident!("{}", arg.array.name())
-        } else {
-            format_ident!("_{}", arg.array.name())
-        };
-        let len = Literal::usize_unsuffixed(arg.len);
-        quote!(#ident: &[T; #len])
-    });
+    let params = function_params(&ops, spec, plan);
 
     let body = if plan.pieces.len() > 1 {
         plan.chained_pieces(&ops, spec)
@@ -410,20 +392,7 @@ pub(crate) fn function_into(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> 
     );
     let docs = doc_attrs(&link, &count, &spec.output);
     let places = output_places(&spec.output);
-    let params = spec.args.iter().map(|arg| {
-        let used = plan.pieces.iter().any(|p| p.arrays.contains(&arg.array))
-            || plan
-                .output_leaves
-                .iter()
-                .any(|n| matches!(ops[n.index()], Op::Input(r) if r.array == arg.array));
-        let ident = if used {
-            format_ident!("{}", arg.array.name())
-        } else {
-            format_ident!("_{}", arg.array.name())
-        };
-        let len = Literal::usize_unsuffixed(arg.len);
-        quote!(#ident: &[T; #len])
-    });
+    let params = function_params(&ops, spec, plan);
     let body = if plan.pieces.len() > 1 {
         plan.chained_pieces_into(&ops, spec, &places)
     } else {
@@ -522,6 +491,31 @@ fn generated_allows() -> TokenStream {
     }
 }
 
+/// The emitted function's parameters, `name: &[T; len]` for each of `spec.args`, with a
+/// leading underscore for an array that no piece reads, nor any output that is a leaf (read
+/// by the function itself when the pieces hand their outputs back).
+fn function_params(ops: &[Op], spec: &FunctionSpec, plan: &Plan) -> Vec<TokenStream> {
+    let used = |array: Array| {
+        plan.pieces.iter().any(|p| p.arrays.contains(&array))
+            || plan
+                .output_leaves
+                .iter()
+                .any(|n| matches!(ops[n.index()], Op::Input(r) if r.array == array))
+    };
+    spec.args
+        .iter()
+        .map(|arg| {
+            let ident = if used(arg.array) {
+                format_ident!("{}", arg.array.name())
+            } else {
+                format_ident!("_{}", arg.array.name())
+            };
+            let len = Literal::usize_unsuffixed(arg.len);
+            quote!(#ident: &[T; #len])
+        })
+        .collect()
+}
+
 /// Functions with fewer operations than this, and sines and cosines of at most one
 /// angle, run their baseline copy only: the run-time choice and the call it costs (a
 /// nanosecond or two) would outweigh what the wide copy saves.
@@ -580,6 +574,12 @@ fn carry_and_outputs(carry: Option<TokenStream>, outputs: Option<TokenStream>) -
     }
 }
 
+/// `[vA, vB, …]`: the variables of `nodes`, as an array expression or pattern.
+fn node_array(nodes: &[Node]) -> TokenStream {
+    let names = nodes.iter().map(|&n| var(n));
+    quote!([#(#names),*])
+}
+
 /// The variable holding `node`'s value.
 fn var(node: Node) -> Ident {
     format_ident!("{}", node.to_string())
@@ -590,29 +590,55 @@ impl Plan {
     /// The statements of piece `p` and its result: the next piece's carry, or `output`.
     fn piece_body(&self, ops: &[Op], p: usize, output: &Output) -> TokenStream {
         let piece = &self.pieces[p];
-        let mut stmts = Vec::new();
-        if !piece.carry_in.is_empty() {
-            let names = piece.carry_in.iter().map(|&n| var(n));
-            stmts.push(quote!(let [#(#names),*] = *carry;));
-        }
-        // The leaves (inputs and constants, in id order), then the steps in schedule order.
-        stmts.extend(piece.leaves.iter().map(|&n| let_node(n, ops[n.index()])));
-        stmts.extend(piece.steps.iter().map(|s| let_step(s, ops, &self.fused)));
-
+        let stmts = self.piece_statements(ops, p, &HashMap::new());
         let result = if self.returns_output(p) {
             output.expr_in_kernel()
         } else {
-            let carry = self.pieces.get(p + 1).map(|next| {
-                let names = next.carry_in.iter().map(|&n| var(n));
-                quote!([#(#names),*])
-            });
-            let outputs = (!piece.outputs.is_empty()).then(|| {
-                let names = piece.outputs.iter().map(|&n| var(n));
-                quote!([#(#names),*])
-            });
+            let carry = self
+                .pieces
+                .get(p + 1)
+                .map(|next| node_array(&next.carry_in));
+            let outputs = (!piece.outputs.is_empty()).then(|| node_array(&piece.outputs));
             carry_and_outputs(carry, outputs)
         };
         quote!(#(#stmts)* #result)
+    }
+
+    /// The statements of piece `p`: its carry bound to names, the leaves (inputs and
+    /// constants, in id order), then the steps in schedule order, each followed by the
+    /// writes of the values it defines into their `places` in a `_into` function's `out`
+    /// (none for a function that returns its output).
+    fn piece_statements(
+        &self,
+        ops: &[Op],
+        p: usize,
+        places: &HashMap<Node, Vec<TokenStream>>,
+    ) -> Vec<TokenStream> {
+        let piece = &self.pieces[p];
+        let writes = |n: Node| {
+            let v = var(n);
+            places
+                .get(&n)
+                .into_iter()
+                .flatten()
+                .map(move |place| quote!(#place = #v;))
+        };
+        let mut stmts = Vec::new();
+        if !piece.carry_in.is_empty() {
+            let names = node_array(&piece.carry_in);
+            stmts.push(quote!(let #names = *carry;));
+        }
+        for &n in &piece.leaves {
+            stmts.push(let_node(n, ops[n.index()]));
+            stmts.extend(writes(n));
+        }
+        for step in &piece.steps {
+            stmts.push(let_step(step, ops, &self.fused));
+            for n in step.defines() {
+                stmts.extend(writes(n));
+            }
+        }
+        stmts
     }
 
     /// The statements of piece `p` of a `_into` function: those of [`Plan::piece_body`],
@@ -626,40 +652,14 @@ impl Plan {
         places: &HashMap<Node, Vec<TokenStream>>,
         kept: &[Node],
     ) -> TokenStream {
-        let piece = &self.pieces[p];
-        let writes = |n: Node| {
-            let v = var(n);
-            places
-                .get(&n)
-                .into_iter()
-                .flatten()
-                .map(move |place| quote!(#place = #v;))
-        };
-        let mut stmts = Vec::new();
-        if !piece.carry_in.is_empty() {
-            let names = piece.carry_in.iter().map(|&n| var(n));
-            stmts.push(quote!(let [#(#names),*] = *carry;));
-        }
-        for &n in &piece.leaves {
-            stmts.push(let_node(n, ops[n.index()]));
-            stmts.extend(writes(n));
-        }
-        for step in &piece.steps {
-            stmts.push(let_step(step, ops, &self.fused));
-            for n in step.defines() {
-                stmts.extend(writes(n));
-            }
-        }
+        let stmts = self.piece_statements(ops, p, places);
         // A piece before the last returns the values the next one reads, and each piece
         // the outputs it computes that the function needs after the pieces (`kept`).
-        let carry = self.pieces.get(p + 1).map(|next| {
-            let names = next.carry_in.iter().map(|&n| var(n));
-            quote!([#(#names),*])
-        });
-        let kept = (!kept.is_empty()).then(|| {
-            let names = kept.iter().map(|&n| var(n));
-            quote!([#(#names),*])
-        });
+        let carry = self
+            .pieces
+            .get(p + 1)
+            .map(|next| node_array(&next.carry_in));
+        let kept = (!kept.is_empty()).then(|| node_array(kept));
         let result = match (&carry, &kept) {
             (None, None) => None,
             _ => Some(carry_and_outputs(carry, kept)),
@@ -701,10 +701,7 @@ impl Plan {
             quote!(#next)
         });
         let outputs = &self.pieces[p].outputs;
-        let outputs = (!outputs.is_empty()).then(|| {
-            let names = outputs.iter().map(|&n| var(n));
-            quote!([#(#names),*])
-        });
+        let outputs = (!outputs.is_empty()).then(|| node_array(outputs));
         carry_and_outputs(carry, outputs)
     }
 
@@ -764,6 +761,21 @@ impl Plan {
         quote!(#name: #runtime::isa::Isa<WIDE>)
     }
 
+    /// The parameters of piece `p`'s kernel after its `isa` (the arrays it reads, then its
+    /// `carry`), and the arguments the emitted function passes for them.
+    fn piece_params(&self, p: usize, spec: &FunctionSpec) -> (Vec<TokenStream>, Vec<TokenStream>) {
+        let piece = &self.pieces[p];
+        let (mut params, args) = array_params(&piece.arrays, spec);
+        let mut args: Vec<TokenStream> = args.iter().map(|a| quote!(#a)).collect();
+        if !piece.carry_in.is_empty() {
+            let carry = format_ident!("carry_{p}");
+            let k = Literal::usize_unsuffixed(piece.carry_in.len());
+            params.push(quote!(carry: &[T; #k]));
+            args.push(quote!(&#carry));
+        }
+        (params, args)
+    }
+
     /// The body of a split function: the pieces as nested kernels, then their chain, each
     /// piece run by `T::run_piece` (or, with `spec.dispatch` off, the baseline copies as
     /// `#[inline(never)]` functions called in turn).
@@ -772,16 +784,9 @@ impl Plan {
         let n = self.pieces.len();
         let mut fns = Vec::new();
         let mut calls = Vec::new();
-        for (p, piece) in self.pieces.iter().enumerate() {
+        for p in 0..n {
             let part = format_ident!("part_{}", p + 1);
-            let carry = format_ident!("carry_{p}");
-            let (mut params, args) = array_params(&piece.arrays, spec);
-            let mut args: Vec<TokenStream> = args.iter().map(|a| quote!(#a)).collect();
-            if !piece.carry_in.is_empty() {
-                let k = Literal::usize_unsuffixed(piece.carry_in.len());
-                params.push(quote!(carry: &[T; #k]));
-                args.push(quote!(&#carry));
-            }
+            let (mut params, args) = self.piece_params(p, spec);
             let ret = self.piece_return_type(p, spec);
             let doc = format!(" Piece {} of {n}.", p + 1);
             let run = if spec.dispatch {
@@ -868,14 +873,7 @@ impl Plan {
         let mut calls = Vec::new();
         for (p, piece) in self.pieces.iter().enumerate() {
             let part = format_ident!("part_{}", p + 1);
-            let carry = format_ident!("carry_{p}");
-            let (mut params, args) = array_params(&piece.arrays, spec);
-            let mut args: Vec<TokenStream> = args.iter().map(|a| quote!(#a)).collect();
-            if !piece.carry_in.is_empty() {
-                let k = Literal::usize_unsuffixed(piece.carry_in.len());
-                params.push(quote!(carry: &[T; #k]));
-                args.push(quote!(&#carry));
-            }
+            let (mut params, args) = self.piece_params(p, spec);
             params.push(quote!(out: &mut #ret));
             let kept: Vec<Node> = piece
                 .outputs
@@ -929,10 +927,7 @@ impl Plan {
                 let next = format_ident!("carry_{}", p + 1);
                 quote!(#next)
             });
-            let kept = (!kept.is_empty()).then(|| {
-                let names = kept.iter().map(|&n| var(n));
-                quote!([#(#names),*])
-            });
+            let kept = (!kept.is_empty()).then(|| node_array(&kept));
             calls.push(match (&next, &kept) {
                 (None, None) => quote!(#run;),
                 _ => {

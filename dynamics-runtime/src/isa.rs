@@ -28,7 +28,7 @@
 //! [`crate::Scalar::mul_add`]), [`wide()`] is always false, [`choose`] grants nothing, and
 //! this module has no `unsafe`. The wide copies are never called, so never instantiated.
 
-#![cfg_attr(feature = "std", allow(unsafe_code))] // two calls of a `#[target_feature]` function; proof at each
+#![cfg_attr(feature = "std", allow(unsafe_code))] // one call of a `#[target_feature]` function; proof at the call
 
 #[cfg(feature = "std")]
 use std::sync::atomic::{AtomicU8, Ordering};
@@ -252,15 +252,14 @@ pub(crate) fn run_piece<R>(
 /// it chooses itself, with that copy's operations: the results are the same either way.
 #[inline(always)]
 pub(crate) fn run_loop<R>(f: impl FnOnce() -> R) -> R {
-    #[cfg(all(target_arch = "x86_64", feature = "std"))]
-    if self::wide() {
-        // SAFETY: `avx2_fma` is compiled for AVX2 and FMA and requires nothing else, and
-        // `self::wide()` returns true only when `CHOICE` holds `WIDE`, which `decide` and
-        // `choose` store only after std's `is_x86_feature_detected!` found both features
-        // on this CPU (the same proof as in `run`).
-        return unsafe { avx2_fma(f) };
-    }
-    f()
+    // `f` is the argument handed on, so that one closure can own it in either copy.
+    run_with(
+        f,
+        #[inline(always)]
+        |_, f| f(),
+        #[inline(always)]
+        |_, f| f(),
+    )
 }
 
 /// `f()` compiled for AVX2 and FMA: the closures the generated code passes are

@@ -9,6 +9,7 @@ use proptest::prelude::*;
 use serde::Deserialize;
 
 mod default_functions;
+pub mod into_twins;
 mod split_mix;
 
 pub use default_functions::DEFAULT_FUNCTIONS;
