@@ -17,7 +17,8 @@ use proc_macro2::{Ident, Span};
 /// at run time: the values crossing it go through memory, and the optimizer sees one piece
 /// at a time. The quadruped's Coriolis matrix, cut in three at the earlier threshold of
 /// 1500 live nodes, took 0.72 of the time whole (paired, `models/tools/generated_ab.sh`),
-/// and compiled no slower.
+/// and compiled no slower. Only builds with debug info or without optimization cut; the
+/// others take every function whole ([`crate::build_profile`]).
 pub(crate) const DEFAULT_SPLIT_THRESHOLD: usize = 2500;
 
 /// One generated function: its graph and how to emit it.

@@ -21,6 +21,7 @@
 //! result ([`Compiled::evaluate`] evaluates one of its functions in `f64`, for tests).
 //! `docs/ARCHITECTURE.md` in the repository describes each stage.
 
+mod build_profile;
 mod declare;
 mod determinacy;
 mod expand;
@@ -34,6 +35,7 @@ mod sym;
 mod syntax;
 mod urdf;
 
+pub use build_profile::takes_whole_functions;
 pub use model::RotationResidues;
 pub use sym::OpCount;
 pub use syntax::Mechanism;
@@ -67,6 +69,16 @@ pub struct FunctionSummary {
 }
 
 impl Compiled {
+    /// Prints every function whole, however long, instead of cutting the long ones into
+    /// pieces: faster code, for a crate built optimized and without debug info (see
+    /// [`takes_whole_functions`]). rustc overflows its stack on such functions with debug
+    /// info.
+    pub fn take_functions_whole(&mut self) {
+        for function in &mut self.functions {
+            function.spec.split_threshold = usize::MAX;
+        }
+    }
+
     /// The mechanism's type name.
     #[must_use]
     pub fn name(&self) -> String {
@@ -320,7 +332,13 @@ pub fn expand_mechanism(input: TokenStream) -> TokenStream {
     };
     let (vis, name) = (mechanism.visibility.clone(), mechanism.name.clone());
     match compile(mechanism, &urdf::manifest_dir()) {
-        Ok(compiled) => to_tokens(&compiled),
+        Ok(mut compiled) => {
+            // The macro runs inside rustc: its command line is the build's.
+            if takes_whole_functions(std::env::args()) {
+                compiled.take_functions_whole();
+            }
+            to_tokens(&compiled)
+        }
         Err(e) => {
             let errors = e.to_compile_error();
             quote! {

@@ -2,14 +2,17 @@
 //! op count of every function.
 //!
 //! ```text
-//! dynamics-codegen <file.rs | file.urdf> [--only NAME] [--ops]
+//! dynamics-codegen <file.rs | file.urdf> [--only NAME] [--ops] [--whole]
 //! ```
 //!
 //! A `.rs` file is searched for `mechanism! { ... }` invocations (URDF paths inside them are
 //! relative to the nearest folder with a `Cargo.toml`, as in the macro). A `.urdf` file is
 //! compiled as a fixed-base mechanism with every output and the default gravity of every
 //! declaration, (0, 0, −9.81).
-//! `--only NAME` keeps one mechanism; `--ops` prints only the op-count table. Beside each
+//! `--only NAME` keeps one mechanism; `--ops` prints only the op-count table; `--whole`
+//! prints long functions whole, as the macro does in a build optimized and without debug
+//! info (faster code; such a file compiles only in such builds), where by default they are
+//! cut into pieces, which compile in every build. Beside each
 //! count: the longest chain of dependent operations, in estimated cycles
 //! (`Graph::longest_chain`).
 
@@ -22,15 +25,17 @@ struct Options {
     file: PathBuf,
     only: Option<String>,
     ops_only: bool,
+    whole: bool,
 }
 
 fn parse_args() -> Result<Options, String> {
     let mut args = std::env::args().skip(1);
-    let (mut file, mut only, mut ops_only) = (None, None, false);
+    let (mut file, mut only, mut ops_only, mut whole) = (None, None, false, false);
     while let Some(arg) = args.next() {
         match arg.as_str() {
             "--only" => only = Some(args.next().ok_or("--only needs a mechanism name")?),
             "--ops" => ops_only = true,
+            "--whole" => whole = true,
             "-h" | "--help" => return Err(String::new()),
             _ if file.is_none() => file = Some(PathBuf::from(arg)),
             _ => return Err(format!("unexpected argument `{arg}`")),
@@ -41,6 +46,7 @@ fn parse_args() -> Result<Options, String> {
         file,
         only,
         ops_only,
+        whole,
     })
 }
 
@@ -152,7 +158,7 @@ fn run(options: &Options) -> Result<(), String> {
             continue;
         }
         any = true;
-        let compiled = compile(mechanism, &dir).map_err(|e| {
+        let mut compiled = compile(mechanism, &dir).map_err(|e| {
             if is_urdf(&options.file) {
                 // The spans are those of the declaration made up for the file, not of a
                 // place in it; URDF errors name their line and column in the message.
@@ -164,6 +170,9 @@ fn run(options: &Options) -> Result<(), String> {
                 located(&options.file, e)
             }
         })?;
+        if options.whole {
+            compiled.take_functions_whole();
+        }
         let text = if options.ops_only {
             op_table(&compiled)
         } else {
@@ -213,7 +222,9 @@ fn main() -> ExitCode {
             if !message.is_empty() {
                 eprintln!("dynamics-codegen: {message}");
             }
-            eprintln!("usage: dynamics-codegen <file.rs | file.urdf> [--only NAME] [--ops]");
+            eprintln!(
+                "usage: dynamics-codegen <file.rs | file.urdf> [--only NAME] [--ops] [--whole]"
+            );
             ExitCode::from(2)
         }
     }

@@ -8,9 +8,11 @@
 //!
 //! # Splitting long functions
 //!
-//! rustc overflows its stack on very long functions in debug builds, and its compile time
-//! grows faster than the length, so a body of more than [`FunctionSpec::split_threshold`]
-//! statements is cut into pieces of about equal length. Each piece is a kernel of its own,
+//! rustc overflows its stack on very long functions in builds with debug info, and its
+//! compile time grows faster than the length in unoptimized ones, so there a body of more
+//! than [`FunctionSpec::split_threshold`] statements is cut into pieces of about equal
+//! length. An optimized build without debug info takes every function whole
+//! ([`crate::build_profile`]), which runs faster. Each piece is a kernel of its own,
 //! nested inside the emitted function (so the emitted code stays a single item, usable at
 //! module level or in an `impl` block), run by `T::run_piece`, which keeps either copy out
 //! of line; the emitted function only chains them:
