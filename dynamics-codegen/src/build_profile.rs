@@ -24,7 +24,7 @@
 /// Whether a build with this rustc command line (program name first) may take long
 /// functions whole: optimized, and without debug info.
 #[must_use]
-pub fn takes_whole_functions<I: IntoIterator<Item = String>>(rustc_args: I) -> bool {
+pub(crate) fn takes_whole_functions<I: IntoIterator<Item = String>>(rustc_args: I) -> bool {
     let mut opt_level = String::from("0");
     let mut debuginfo = String::from("0");
     let mut args = rustc_args.into_iter().skip(1);

@@ -35,7 +35,6 @@ mod sym;
 mod syntax;
 mod urdf;
 
-pub use build_profile::takes_whole_functions;
 pub use model::RotationResidues;
 pub use sym::OpCount;
 pub use syntax::Mechanism;
@@ -70,9 +69,10 @@ pub struct FunctionSummary {
 
 impl Compiled {
     /// Prints every function whole, however long, instead of cutting the long ones into
-    /// pieces: faster code, for a crate built optimized and without debug info (see
-    /// [`takes_whole_functions`]). rustc overflows its stack on such functions with debug
-    /// info.
+    /// pieces: faster code, for a crate built optimized and without debug info, as the
+    /// `mechanism!` macro decides from rustc's command line (`build_profile`). rustc
+    /// overflows its stack on such functions with debug info. A `build.rs` reads the same
+    /// from Cargo's `OPT_LEVEL` and `DEBUG` environment variables.
     pub fn take_functions_whole(&mut self) {
         for function in &mut self.functions {
             function.spec.split_threshold = usize::MAX;
@@ -334,7 +334,7 @@ pub fn expand_mechanism(input: TokenStream) -> TokenStream {
     match compile(mechanism, &urdf::manifest_dir()) {
         Ok(mut compiled) => {
             // The macro runs inside rustc: its command line is the build's.
-            if takes_whole_functions(std::env::args()) {
+            if build_profile::takes_whole_functions(std::env::args()) {
                 compiled.take_functions_whole();
             }
             to_tokens(&compiled)
