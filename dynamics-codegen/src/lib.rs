@@ -700,16 +700,29 @@ mod tests {
             quote!([mass_matrix, coriolis, forward_dynamics]),
         ))
         .expect("parses");
-        let compiled = compile(mechanism, Path::new(".")).expect("valid");
-        let file: syn::File = syn::parse2(to_tokens(&compiled)).expect("valid Rust");
-        let mut lengths = Vec::new();
-        body_lengths(&file.items, &mut lengths);
-        let longest = lengths.iter().copied().max().unwrap_or(0);
+        let mut compiled = compile(mechanism, Path::new(".")).expect("valid");
+        let lengths = |compiled: &Compiled| {
+            let file: syn::File = syn::parse2(to_tokens(compiled)).expect("valid Rust");
+            let mut lengths = Vec::new();
+            body_lengths(&file.items, &mut lengths);
+            lengths
+        };
+        let split = lengths(&compiled);
+        let longest = split.iter().copied().max().unwrap_or(0);
         assert!(
-            lengths.len() > 10,
+            split.len() > 10,
             "expected split pieces, found {} bodies",
-            lengths.len()
+            split.len()
         );
         assert!(longest <= 2500, "a body of {longest} statements");
+        // What an optimized build without debug info gets: the same functions, uncut.
+        compiled.take_functions_whole();
+        let whole = lengths(&compiled);
+        let longest = whole.iter().copied().max().unwrap_or(0);
+        assert!(whole.len() < split.len(), "{} bodies whole", whole.len());
+        assert!(
+            longest > 2500,
+            "the longest whole body has {longest} statements"
+        );
     }
 }
