@@ -30,7 +30,8 @@
 # against Pinocchio's within 1e-10 + 100 T, as the model moves by up to T).
 # Robots: go2 (Unitree quadruped, free base, 18 dof), xarm7 (7-dof arm), g1 (Unitree humanoid,
 # 29 joints, free base, 35 dof); by name also the 18-dof quadrupeds anymal (ANYmal C),
-# solo12, a1 and hyq. Nothing of example-robot-data is committed.
+# solo12, a1 and hyq, and the arm z1 (Unitree Z1: 6 joints and a revolute gripper joint,
+# 7 dof). Nothing of example-robot-data is committed.
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"

@@ -35,6 +35,7 @@ ROBOTS = {
     "solo12": ("solo_description/robots/solo12.urdf", True),
     "a1": ("a1_description/urdf/a1.urdf", True),
     "hyq": ("hyq_description/robots/hyq_no_sensors.urdf", True),
+    "z1": ("z1_description/urdf/z1.urdf", False),
 }
 SAMPLES = 20
 
