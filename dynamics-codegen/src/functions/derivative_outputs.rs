@@ -282,9 +282,8 @@ fn cheapest_inverse_dynamics_jacobians(model: &Model) -> (Graph, Output, Velocit
             _ => cost,
         }
     };
-    let mut candidates: Vec<_> = velocity_columns(model).into_iter().map(expand).collect();
-    let best = cheapest(&candidates, cost);
-    candidates.swap_remove(best)
+    let candidates: Vec<_> = velocity_columns(model).into_iter().map(expand).collect();
+    take_cheapest(candidates, cost)
 }
 
 pub(super) fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
@@ -320,11 +319,13 @@ pub(super) fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
     }
 }
 
-/// The index of the candidate of least `cost` (each costed once), the first of equal costs.
-fn cheapest<T>(candidates: &[T], cost: impl Fn(&T) -> usize) -> usize {
-    (0..candidates.len())
+/// The candidate of least `cost` (each costed once), the first of equal costs, taken out
+/// of `candidates`, which holds at least one.
+fn take_cheapest<T>(mut candidates: Vec<T>, cost: impl Fn(&T) -> usize) -> T {
+    let best = (0..candidates.len())
         .min_by_key(|&k| cost(&candidates[k]))
-        .unwrap_or(0)
+        .unwrap_or(0);
+    candidates.swap_remove(best)
 }
 
 pub(super) fn forward_dynamics_derivatives(model: &Model) -> Expanded {
@@ -342,10 +343,9 @@ pub(super) fn forward_dynamics_derivatives(model: &Model) -> Expanded {
     };
     let chain = |method: ForwardMethod, velocity: VelocityColumns| {
         let (g, t, i) = fresh_graph(model);
-        let mut outputs =
+        let outputs =
             forward_dynamics_derivatives_by_chain_rule(&g, &t, &i, model, method, velocity);
-        let best = cheapest(&outputs, |(output, _)| output_cost(&g, output));
-        let (output, solves) = outputs.swap_remove(best);
+        let (output, solves) = take_cheapest(outputs, |(output, _)| output_cost(&g, output));
         let tau_by = match velocity {
             VelocityColumns::ForwardMode => "forward-mode derivatives of Newton–Euler",
             VelocityColumns::Coriolis => {
@@ -386,8 +386,7 @@ pub(super) fn forward_dynamics_derivatives(model: &Model) -> Expanded {
     for &method in &methods {
         candidates.push(chain(method, velocity));
     }
-    let best = cheapest(&candidates, |(g, output, _)| output_cost(g, output));
-    let (graph, output, how) = candidates.swap_remove(best);
+    let (graph, output, how) = take_cheapest(candidates, |(g, output, _)| output_cost(g, output));
     Expanded {
         graph,
         output,
@@ -487,9 +486,10 @@ enum Solves {
 /// tree the sums over common ancestors are about half the straight-line operations, and
 /// the loop does them four columns per instruction.
 pub(super) fn mass_matrix_inverse(model: &Model) -> Expanded {
-    let mut candidates = mass_matrix_inverse_candidates(model);
-    let best = cheapest(&candidates, |(g, output, _)| output_cost(g, output));
-    let (graph, output, how) = candidates.swap_remove(best);
+    let (graph, output, how) =
+        take_cheapest(mass_matrix_inverse_candidates(model), |(g, output, _)| {
+            output_cost(g, output)
+        });
     Expanded {
         graph,
         output,
