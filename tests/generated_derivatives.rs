@@ -2,7 +2,9 @@
 //! - against Pinocchio's `computeRNEADerivatives` (∂τ/∂q, ∂τ/∂v), `computeABADerivatives`
 //!   (∂q̈/∂q, ∂q̈/∂v) and its M⁻¹ for the five anchor robots, imported from the same URDF
 //!   files, at Pinocchio's 20 sampled states (`tests/data/pinocchio_ext/<name>_derivatives.json`),
-//!   within 1e-10 · (1 + max |entry|) per matrix;
+//!   within 1e-10 · (1 + max |entry|) per matrix, and the same for the URDF import's
+//!   branched robot on a free base, 13 dof (`branched_derivatives.json`, written by
+//!   `models/tools/pinocchio_branched_derivatives.py`);
 //! - on a free-floating branched tree with a prismatic joint, against central differences
 //!   along q ⊕ t e_j (the free base moved on its manifold by `integrate_configuration`, so
 //!   the q-columns are in the tangent space, as Pinocchio's) and along v, and M⁻¹ M = 1.
@@ -43,6 +45,16 @@ mechanism! {
 mechanism! {
     pub struct PandaDerivatives;
     urdf: "../models/urdf/panda.urdf";
+    outputs: [inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse];
+}
+
+mechanism! {
+    /// The URDF import's branched test robot on a free base (13 dof, a prismatic joint), its
+    /// damping left out as Pinocchio's algorithms leave it out.
+    pub struct BranchedDerivatives;
+    urdf: "data/urdf/branched.urdf";
+    floating_base: true;
+    urdf_damping: false;
     outputs: [inverse_dynamics_derivatives, forward_dynamics_derivatives, mass_matrix_inverse];
 }
 
@@ -191,6 +203,21 @@ fn derivatives_match_pinocchio() {
             inverse: PandaDerivatives::inverse_dynamics_derivatives::<f64>,
             forward: PandaDerivatives::forward_dynamics_derivatives::<f64>,
             minv: PandaDerivatives::mass_matrix_inverse::<f64>,
+        },
+    );
+}
+
+/// A URDF robot on a free base: Pinocchio's free flyer (q = [x, y, z, qx, qy, qz, qw],
+/// v = [v_lin, ω] in the body frame) and its q-derivative in the tangent space, the
+/// increment in the body frame, are the generated code's conventions too.
+#[test]
+fn free_base_derivatives_match_pinocchio() {
+    check_against_pinocchio(
+        "branched",
+        &Derivatives {
+            inverse: BranchedDerivatives::inverse_dynamics_derivatives::<f64>,
+            forward: BranchedDerivatives::forward_dynamics_derivatives::<f64>,
+            minv: BranchedDerivatives::mass_matrix_inverse::<f64>,
         },
     );
 }
