@@ -99,11 +99,23 @@ def random_configuration(model, rng):
     return q
 
 
-def sample(model, data, rng):
+def random_state(model, rng):
+    """A configuration and velocities, accelerations and joint forces, drawn in that order."""
     q = random_configuration(model, rng)
     v = rng.uniform(-2.0, 2.0, model.nv)
     a = rng.uniform(-3.0, 3.0, model.nv)
     tau = rng.uniform(-5.0, 5.0, model.nv)
+    return q, v, a, tau
+
+
+def free_flyer_model():
+    """Pinocchio's model of branched.urdf on a free-flyer root, and its data."""
+    model = pin.buildModelFromUrdf(URDF, pin.JointModelFreeFlyer())
+    return model, model.createData()
+
+
+def sample(model, data, rng):
+    q, v, a, tau = random_state(model, rng)
     return {
         "q": vector(q),
         "v": vector(v),
@@ -121,8 +133,7 @@ def sample(model, data, rng):
 
 
 def main():
-    model = pin.buildModelFromUrdf(URDF, pin.JointModelFreeFlyer())
-    data = model.createData()
+    model, data = free_flyer_model()
     rng = np.random.default_rng(SEED)
     out = {
         "name": "branched",

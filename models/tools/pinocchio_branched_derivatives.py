@@ -14,7 +14,7 @@ written with pin 4.1.0), e.g. with the comparison's environment:
     models/benches/pinocchio/venv/bin/python models/tools/pinocchio_branched_derivatives.py
 
 The samples come from a fixed seed (its own, so the states differ from branched.json's),
-with configurations drawn as pinocchio_branched.py draws them.
+with the states drawn as pinocchio_branched.py draws them.
 """
 import json
 import os
@@ -24,7 +24,7 @@ import numpy as np
 import pinocchio as pin
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pinocchio_branched import URDF, random_configuration, rows, symmetric, vector  # noqa: E402
+from pinocchio_branched import free_flyer_model, random_state, rows, symmetric, vector  # noqa: E402
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 OUT = os.path.join(ROOT, "tests", "data", "pinocchio_ext", "branched_derivatives.json")
@@ -33,10 +33,7 @@ SEED = 20261129
 
 
 def sample(model, data, rng):
-    q = random_configuration(model, rng)
-    v = rng.uniform(-2.0, 2.0, model.nv)
-    a = rng.uniform(-3.0, 3.0, model.nv)
-    tau = rng.uniform(-5.0, 5.0, model.nv)
+    q, v, a, tau = random_state(model, rng)
     dtau_dq, dtau_dv, _ = pin.computeRNEADerivatives(model, data, q, v, a)
     dtau_dq, dtau_dv = np.copy(dtau_dq), np.copy(dtau_dv)
     ddq_dq, ddq_dv, minv = pin.computeABADerivatives(model, data, q, v, tau)
@@ -54,8 +51,7 @@ def sample(model, data, rng):
 
 
 def main():
-    model = pin.buildModelFromUrdf(URDF, pin.JointModelFreeFlyer())
-    data = model.createData()
+    model, data = free_flyer_model()
     rng = np.random.default_rng(SEED)
     out = {
         "name": "branched",
