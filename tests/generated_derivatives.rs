@@ -122,6 +122,17 @@ struct Derivatives<const NQ: usize, const NV: usize> {
     minv: fn(&[f64; NQ]) -> [[f64; NV]; NV],
 }
 
+/// The three derivative functions of a generated mechanism, at f64.
+macro_rules! derivatives_of {
+    ($m:ty) => {
+        Derivatives {
+            inverse: <$m>::inverse_dynamics_derivatives::<f64>,
+            forward: <$m>::forward_dynamics_derivatives::<f64>,
+            minv: <$m>::mass_matrix_inverse::<f64>,
+        }
+    };
+}
+
 fn check_against_pinocchio<const NQ: usize, const NV: usize>(name: &str, f: &Derivatives<NQ, NV>) {
     for (k, s) in samples(name).iter().enumerate() {
         let q: [f64; NQ] = s.q.clone().try_into().expect("nq");
@@ -165,46 +176,14 @@ fn check_against_pinocchio<const NQ: usize, const NV: usize>(name: &str, f: &Der
 
 #[test]
 fn derivatives_match_pinocchio() {
-    check_against_pinocchio(
-        "pendulum",
-        &Derivatives {
-            inverse: PendulumDerivatives::inverse_dynamics_derivatives::<f64>,
-            forward: PendulumDerivatives::forward_dynamics_derivatives::<f64>,
-            minv: PendulumDerivatives::mass_matrix_inverse::<f64>,
-        },
-    );
+    check_against_pinocchio("pendulum", &derivatives_of!(PendulumDerivatives));
     check_against_pinocchio(
         "double_pendulum",
-        &Derivatives {
-            inverse: DoublePendulumDerivatives::inverse_dynamics_derivatives::<f64>,
-            forward: DoublePendulumDerivatives::forward_dynamics_derivatives::<f64>,
-            minv: DoublePendulumDerivatives::mass_matrix_inverse::<f64>,
-        },
+        &derivatives_of!(DoublePendulumDerivatives),
     );
-    check_against_pinocchio(
-        "planar3",
-        &Derivatives {
-            inverse: Planar3Derivatives::inverse_dynamics_derivatives::<f64>,
-            forward: Planar3Derivatives::forward_dynamics_derivatives::<f64>,
-            minv: Planar3Derivatives::mass_matrix_inverse::<f64>,
-        },
-    );
-    check_against_pinocchio(
-        "ur5",
-        &Derivatives {
-            inverse: Ur5Derivatives::inverse_dynamics_derivatives::<f64>,
-            forward: Ur5Derivatives::forward_dynamics_derivatives::<f64>,
-            minv: Ur5Derivatives::mass_matrix_inverse::<f64>,
-        },
-    );
-    check_against_pinocchio(
-        "panda",
-        &Derivatives {
-            inverse: PandaDerivatives::inverse_dynamics_derivatives::<f64>,
-            forward: PandaDerivatives::forward_dynamics_derivatives::<f64>,
-            minv: PandaDerivatives::mass_matrix_inverse::<f64>,
-        },
-    );
+    check_against_pinocchio("planar3", &derivatives_of!(Planar3Derivatives));
+    check_against_pinocchio("ur5", &derivatives_of!(Ur5Derivatives));
+    check_against_pinocchio("panda", &derivatives_of!(PandaDerivatives));
 }
 
 /// A URDF robot on a free base: Pinocchio's free flyer (q = [x, y, z, qx, qy, qz, qw],
@@ -212,14 +191,7 @@ fn derivatives_match_pinocchio() {
 /// increment in the body frame, are the generated code's conventions too.
 #[test]
 fn free_base_derivatives_match_pinocchio() {
-    check_against_pinocchio(
-        "branched",
-        &Derivatives {
-            inverse: BranchedDerivatives::inverse_dynamics_derivatives::<f64>,
-            forward: BranchedDerivatives::forward_dynamics_derivatives::<f64>,
-            minv: BranchedDerivatives::mass_matrix_inverse::<f64>,
-        },
-    );
+    check_against_pinocchio("branched", &derivatives_of!(BranchedDerivatives));
 }
 
 /// Central differences of `f` along q ⊕ t e_j and along v + t e_j, column by column.

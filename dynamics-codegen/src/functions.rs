@@ -580,8 +580,9 @@ fn weighted_cost(g: &Graph, outputs: &[Node]) -> usize {
 const OPERATIONS_IN_INSTRUCTION_CACHE: usize = 3_000;
 
 /// [`weighted_cost`] of what a function returns, with the solve loop of an
-/// [`Output::Solved`] at [`TreeSolve::loop_cost`](crate::ir::TreeSolve::loop_cost), and each straight-line operation past
-/// [`OPERATIONS_IN_INSTRUCTION_CACHE`] counted twice: code that does not fit the
+/// [`Output::Solved`] at [`TreeSolve::loop_cost`](crate::ir::TreeSolve::loop_cost), and
+/// each straight-line operation past [`OPERATIONS_IN_INSTRUCTION_CACHE`] counted twice:
+/// code that does not fit the
 /// instruction cache waits on fetching it (the go2's straight-line M⁻¹, 3,721 weighted
 /// operations, took 641 ns where its 7 operations a nanosecond in cache predict 530).
 fn output_cost(g: &Graph, output: &Output) -> usize {

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes tests/data/pinocchio_ext/branched_derivatives.json: Pinocchio's derivatives of the
 dynamics of the test robot tests/data/urdf/branched.urdf on a free-flyer root (a branched
-tree with a prismatic joint, 14 degrees of freedom), in the format of the other
+tree with a prismatic joint, 13 degrees of freedom, 14 coordinates), in the format of the other
 *_derivatives.json files (read by tests/generated_derivatives.rs):
 computeRNEADerivatives(q, v, a) -> dtau_dq, dtau_dv; computeABADerivatives(q, v, tau) ->
 ddq_dq, ddq_dv and minv (ddq_dtau, its upper triangle mirrored). q-derivatives in the
