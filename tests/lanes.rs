@@ -16,8 +16,9 @@
 //!
 //! `cargo test -p dynamics-tests --test lanes -- --nocapture` prints each function's
 //! worst error and share of bit-for-bit outputs.
-//! - `batch::map*` on the generated functions, lengths not a multiple of the lanes: every
-//!   state's result is the scalar call, bit for bit.
+//! - `batch::map*` on the generated functions (and `batch::map1_into` on their `_into`
+//!   twins), lengths not a multiple of the lanes: every state's result is the scalar call,
+//!   bit for bit.
 //!
 //! The choice of kernel copy is global to the process: each test holds `ISA` while it runs.
 
@@ -438,8 +439,14 @@ fn batch_helpers_on_generated_functions() {
     batch::map1(&q, &mut m, Ur5::mass_matrix).expect("equal lengths");
     batch::map3(&q, &v, &tau, &mut fd, Ur5::forward_dynamics).expect("equal lengths");
     batch::map2(&q, &v, &mut h, Ur5::bias).expect("equal lengths");
+    let mut m_into = vec![[[f64::NAN; 6]; 6]; n];
+    batch::map1_into(&q, &mut m_into, Ur5::mass_matrix_into).expect("equal lengths");
     let bits = |x: &[f64]| x.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
     for i in 0..n {
+        assert_eq!(
+            m_into[i].map(|r| bits(&r)),
+            Ur5::mass_matrix(&q[i]).map(|r| bits(&r))
+        );
         assert_eq!(
             bits(&id[i]),
             bits(&Ur5::inverse_dynamics(&q[i], &v[i], &a[i]))
@@ -471,7 +478,15 @@ fn batch_helpers_on_generated_functions() {
     })
     .expect("equal lengths");
     let standing: [f64; QUAD_NL] = std::array::from_fn(|k| standing[k]);
+    // The 18 × 18 mass matrix written in place: four blocks of four and two single entries
+    // per row unpacked.
+    let mut m = vec![[[f64::NAN; QUAD_NV]; QUAD_NV]; quad.len()];
+    batch::map1_into(&q, &mut m, Quadruped::mass_matrix_into).expect("equal lengths");
     for i in 0..quad.len() {
+        assert_eq!(
+            m[i].map(|r| bits(&r)),
+            Quadruped::mass_matrix(&q[i]).map(|r| bits(&r))
+        );
         let expected = Quadruped::inverse_dynamics(&q[i], &v[i], &a[i], &l[i]);
         assert_eq!(bits(&id[i]), bits(&expected));
         let expected = Quadruped::forward_dynamics(&q[i], &v[i], &a[i], &standing);

@@ -1,7 +1,7 @@
 //! The batch helpers allocate nothing: a counting global allocator (this test binary's own,
 //! so it holds a single test) sees no allocation, reallocation or deallocation while
 //! `batch::map1`..`map3` run the UR5's inverse dynamics, mass matrix, forward dynamics and
-//! bias on 13 states (a padded last pack), on `F64x4` and on `F32x8`.
+//! bias, and `batch::map1_into` its mass matrix written in place, on 13 states (a padded last pack), on `F64x4` and on `F32x8`.
 
 use dynamics_runtime::batch;
 use models::anchors::Ur5;
@@ -33,6 +33,7 @@ macro_rules! run {
             batch::map1(&q, &mut m, Ur5::mass_matrix).is_ok(),
             batch::map3(&q, &v, &tau, &mut qdd, Ur5::forward_dynamics).is_ok(),
             batch::map2(&q, &v, &mut h, Ur5::bias).is_ok(),
+            batch::map1_into(&q, &mut m, Ur5::mass_matrix_into).is_ok(),
         ];
         let change = region.change();
         black_box((&tau, &m, &qdd, &h));

@@ -109,10 +109,50 @@ pub trait Shape {
         Self: 'a;
     /// Writes lane `lane` of `packed` into `out` (nothing when `lane` is not a lane).
     fn unpack(packed: &Self::Packed, lane: usize, out: &mut Self);
+    /// The packed value with every number 0: the buffer the `map*_into` helpers start from.
+    fn zero_packed() -> Self::Packed;
+    /// Writes lanes 0 to 3 of `packed` into `out[0]` to `out[3]`: a pack's unpacking, four
+    /// results at once. The default goes lane by lane through [`Shape::unpack`]; arrays
+    /// hand their entries to [`Shape::unpack4_array`].
+    #[inline(always)]
+    fn unpack4(packed: &Self::Packed, out: [&mut Self; 4]) {
+        for (lane, o) in out.into_iter().enumerate() {
+            Self::unpack(packed, lane, o);
+        }
+    }
+    /// Writes lanes 0 to 3 of each `packed[k]` into `out[0][k]` to `out[3][k]`: the
+    /// unpacking of an array of `K` packed values. The default takes entry by entry through
+    /// [`Shape::unpack4`]; a number ([`Element`]) overrides it to move four entries of four
+    /// results at a time, so that it reads and writes whole SIMD registers (a 4 × 4
+    /// transpose) instead of one number per instruction.
+    #[inline(always)]
+    fn unpack4_array<const K: usize>(packed: &[Self::Packed; K], out: [&mut [Self; K]; 4])
+    where
+        Self: Sized,
+    {
+        let [a, b, c, d] = out;
+        for k in 0..K {
+            Self::unpack4(&packed[k], [&mut a[k], &mut b[k], &mut c[k], &mut d[k]]);
+        }
+    }
+}
+
+/// The results of one pack, written into `out` (at most [`Lanes::LANES`] of them): four at
+/// once through [`Shape::unpack4`] when there are four (a full pack of [`F64x4`]), else
+/// lane by lane.
+#[inline(always)]
+fn unpack_pack<O: Shape>(packed: &O::Packed, out: &mut [O]) {
+    if let [a, b, c, d] = out {
+        O::unpack4(packed, [a, b, c, d]);
+    } else {
+        for (lane, o) in out.iter_mut().enumerate() {
+            O::unpack(packed, lane, o);
+        }
+    }
 }
 
 macro_rules! element_shape {
-    ($($t:ty),*) => {$(
+    ($($t:ty: $transpose:path),*) => {$(
         impl Shape for $t {
             type Element = $t;
             type Packed = <$t as Element>::Lanes;
@@ -126,11 +166,46 @@ macro_rules! element_shape {
                     *out = x;
                 }
             }
+            #[inline(always)]
+            fn zero_packed() -> Self::Packed {
+                Lanes::splat(0.0)
+            }
+            /// Four entries of four results at a time: lane `l` of `packed[k..k + 4]` is
+            /// written to `out[l][k..k + 4]` as one array, which the compiler turns into a
+            /// 4 × 4 transpose in registers and one store per result; the last `K mod 4`
+            /// entries one by one.
+            #[inline(always)]
+            fn unpack4_array<const K: usize>(
+                packed: &[Self::Packed; K],
+                out: [&mut [Self; K]; 4],
+            ) {
+                let [a, b, c, d] = out;
+                let whole = K - K % 4;
+                for k in (0..whole).step_by(4) {
+                    let lanes = $transpose(core::array::from_fn(|j| {
+                        core::array::from_fn(|l| Lanes::get(packed[k + j], l).unwrap_or(0.0))
+                    }));
+                    a[k..k + 4].copy_from_slice(&lanes[0]);
+                    b[k..k + 4].copy_from_slice(&lanes[1]);
+                    c[k..k + 4].copy_from_slice(&lanes[2]);
+                    d[k..k + 4].copy_from_slice(&lanes[3]);
+                }
+                for k in whole..K {
+                    Self::unpack4(&packed[k], [&mut a[k], &mut b[k], &mut c[k], &mut d[k]]);
+                }
+            }
         }
     )*};
 }
 
-element_shape!(f64, f32);
+element_shape!(f64: transpose::transpose4, f32: transpose4_f32);
+
+/// `f32`'s four results unpacked number by number ([`F32x8`] fills eight lanes, so the
+/// four-at-once path runs only for a last pack of four).
+#[inline(always)]
+fn transpose4_f32(rows: [[f32; 4]; 4]) -> [[f32; 4]; 4] {
+    core::array::from_fn(|l| core::array::from_fn(|j| rows[j][l]))
+}
 
 impl<S: Shape, const K: usize> Shape for [S; K] {
     type Element = S::Element;
@@ -147,6 +222,14 @@ impl<S: Shape, const K: usize> Shape for [S; K] {
         for (p, o) in packed.iter().zip(out.iter_mut()) {
             S::unpack(p, lane, o);
         }
+    }
+    #[inline(always)]
+    fn zero_packed() -> Self::Packed {
+        core::array::from_fn(|_| S::zero_packed())
+    }
+    #[inline(always)]
+    fn unpack4(packed: &Self::Packed, out: [&mut Self; 4]) {
+        S::unpack4_array(packed, out);
     }
 }
 
@@ -165,6 +248,18 @@ macro_rules! tuple_shape {
             #[inline(always)]
             fn unpack(packed: &Self::Packed, lane: usize, out: &mut Self) {
                 $(Shape::unpack(&packed.$index, lane, &mut out.$index);)*
+            }
+            #[inline(always)]
+            fn zero_packed() -> Self::Packed {
+                ($first::zero_packed(), $($rest::zero_packed()),*)
+            }
+            #[inline(always)]
+            fn unpack4(packed: &Self::Packed, out: [&mut Self; 4]) {
+                let [a, b, c, d] = out;
+                $(Shape::unpack4(
+                    &packed.$index,
+                    [&mut a.$index, &mut b.$index, &mut c.$index, &mut d.$index],
+                );)*
             }
         }
     };
@@ -230,6 +325,7 @@ macro_rules! map_fn {
     (
         $(#[$doc:meta])*
         $name:ident, $par:ident, $run:ident;
+        $name_into:ident, $par_into:ident, $run_into:ident;
         $first:ident: $First:ident $(, $arg:ident: $Arg:ident)*
     ) => {
         $(#[$doc])*
@@ -276,9 +372,67 @@ macro_rules! map_fn {
                             break;
                         };
                         let packed = f(&$first, $(&$arg),*);
-                        for (lane, o) in out.iter_mut().enumerate() {
-                            O::unpack(&packed, lane, o);
-                        }
+                        unpack_pack::<O>(&packed, out);
+                    }
+                },
+            );
+        }
+
+        #[doc = concat!("[`", stringify!($name), "`] for a function that writes its result into")]
+        /// its last argument, as the generated `_into` functions do: e.g.
+        /// `batch::map1_into(&q, &mut m, Robot::mass_matrix_into)`. One packed result lives
+        /// for the whole call, nothing is returned by value, and it is unpacked four results
+        /// at a time. `f` must set every entry of that result (the generated `_into`
+        /// functions set all of them, zeros included): the buffer starts at zero and is
+        /// not cleared between packs.
+        ///
+        /// # Errors
+        /// [`LengthMismatch`] for the first input not as long as `out` (nothing written).
+        pub fn $name_into<$First, $($Arg,)* O, F>(
+            $first: &[$First],
+            $($arg: &[$Arg],)*
+            out: &mut [O],
+            f: F,
+        ) -> Result<(), LengthMismatch>
+        where
+            $First: Shape,
+            $($Arg: Shape<Element = $First::Element>,)*
+            O: Shape<Element = $First::Element>,
+            F: FnMut(&$First::Packed, $(&$Arg::Packed,)* &mut O::Packed),
+        {
+            check(out.len(), &[$first.len(), $($arg.len()),*])?;
+            $run_into($first, $($arg,)* out, f);
+            Ok(())
+        }
+
+        /// The loop of the sequential and parallel `_into` helpers, on slices of equal lengths.
+        #[inline(always)]
+        fn $run_into<$First, $($Arg,)* O, F>(
+            $first: &[$First],
+            $($arg: &[$Arg],)*
+            out: &mut [O],
+            mut f: F,
+        ) where
+            $First: Shape,
+            $($Arg: Shape<Element = $First::Element>,)*
+            O: Shape<Element = $First::Element>,
+            F: FnMut(&$First::Packed, $(&$Arg::Packed,)* &mut O::Packed),
+        {
+            let lanes = lanes_of::<$First::Element>();
+            let mut $first = $first.chunks(lanes);
+            $(let mut $arg = $arg.chunks(lanes);)*
+            let mut packed = O::zero_packed();
+            crate::isa::run_loop(
+                #[inline(always)]
+                || {
+                    for out in out.chunks_mut(lanes) {
+                        let (Some($first), $(Some($arg),)*) =
+                            ($first.next().and_then(pack), $($arg.next().and_then(pack),)*)
+                        else {
+                            break;
+                        };
+                        f(&$first, $(&$arg,)* &mut packed);
+                        unpack_pack::<O>(&packed, out);
                     }
                 },
             );
@@ -311,6 +465,34 @@ macro_rules! map_fn {
                 });
             Ok(())
         }
+
+        #[doc = concat!("[`", stringify!($name_into), "`] on rayon's threads (feature `rayon`): ")]
+        /// the states in blocks of 16 packs, each block one task with its own packed
+        /// result; the same results, bit for bit, and the same errors.
+        #[cfg(feature = "rayon")]
+        pub fn $par_into<$First, $($Arg,)* O, F>(
+            $first: &[$First],
+            $($arg: &[$Arg],)*
+            out: &mut [O],
+            f: F,
+        ) -> Result<(), LengthMismatch>
+        where
+            $First: Shape + Sync,
+            $($Arg: Shape<Element = $First::Element> + Sync,)*
+            O: Shape<Element = $First::Element> + Send,
+            F: Fn(&$First::Packed, $(&$Arg::Packed,)* &mut O::Packed) + Sync,
+        {
+            use rayon::prelude::*;
+            check(out.len(), &[$first.len(), $($arg.len()),*])?;
+            let block = lanes_of::<$First::Element>() * PACKS_PER_TASK;
+            out.par_chunks_mut(block)
+                .zip($first.par_chunks(block))
+                $(.zip($arg.par_chunks(block)))*
+                .for_each(|map_fn!(@pattern (out, $first) $($arg)*)| {
+                    $run_into($first, $($arg,)* out, &f)
+                });
+            Ok(())
+        }
     };
     // The nested pairs of rayon's zips: (((out, a), b), c).
     (@pattern $acc:tt) => { $acc };
@@ -326,6 +508,7 @@ map_fn!(
     /// # Errors
     /// [`LengthMismatch`] when `x` is not as long as `out` (nothing written).
     map1, par_map1, run1;
+    map1_into, par_map1_into, run1_into;
     x: X
 );
 map_fn!(
@@ -335,6 +518,7 @@ map_fn!(
     /// # Errors
     /// [`LengthMismatch`] for the first input not as long as `out` (nothing written).
     map2, par_map2, run2;
+    map2_into, par_map2_into, run2_into;
     x: X, y: Y
 );
 map_fn!(
@@ -344,6 +528,7 @@ map_fn!(
     /// # Errors
     /// [`LengthMismatch`] for the first input not as long as `out` (nothing written).
     map3, par_map3, run3;
+    map3_into, par_map3_into, run3_into;
     x: X, y: Y, z: Z
 );
 map_fn!(
@@ -354,6 +539,7 @@ map_fn!(
     /// # Errors
     /// [`LengthMismatch`] for the first input not as long as `out` (nothing written).
     map4, par_map4, run4;
+    map4_into, par_map4_into, run4_into;
     x: X, y: Y, z: Z, w: W
 );
 map_fn!(
@@ -363,8 +549,10 @@ map_fn!(
     /// # Errors
     /// [`LengthMismatch`] for the first input not as long as `out` (nothing written).
     map5, par_map5, run5;
+    map5_into, par_map5_into, run5_into;
     x: X, y: Y, z: Z, w: W, u: U
 );
 
 #[cfg(test)]
 mod tests;
+mod transpose;

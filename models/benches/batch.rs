@@ -1,6 +1,6 @@
 //! States per second through the batch API on one and on two threads: 4,096 seeded states
-//! of the UR5 and of the 18-dof quadruped, inverse dynamics, mass matrix and forward
-//! dynamics.
+//! of the UR5 and of the 18-dof quadruped, inverse dynamics, mass matrix (returned, and
+//! written into the result's place by its `_into` twin) and forward dynamics.
 //!
 //! ```sh
 //! cargo bench -p models --bench batch          # ~1 min after the build
@@ -11,8 +11,9 @@
 //!
 //! - `f64`: one call per state (the AVX2 + FMA copy where the CPU has both), the states
 //!   split into blocks of 64 over rayon's threads;
-//! - `F64x4`: `batch::map4`/`map1` on one thread, `batch::par_map4`/`par_map1` on two (the
-//!   runtime's feature `rayon`), four states per call, packing included.
+//! - `F64x4`: `batch::map4`/`map1`/`map1_into` on one thread, `batch::par_map4`/`par_map1`/
+//!   `par_map1_into` on two (the runtime's feature `rayon`), four states per call, packing
+//!   included.
 //!
 //! Each runs in a rayon pool of 1 and of 2 threads. After criterion's own report, a table
 //! gives millions of states per second: 4,096 over the median of criterion's 20 flat
@@ -54,6 +55,15 @@ fn each_state<O: Send>(out: &mut [O], f: impl Fn(usize) -> O + Sync) {
     });
 }
 
+/// `f(i, &mut out[i])` for every state, one call each, as [`each_state`].
+fn each_state_into<O: Send>(out: &mut [O], f: impl Fn(usize, &mut O) + Sync) {
+    out.par_chunks_mut(BLOCK).enumerate().for_each(|(b, out)| {
+        for (k, o) in out.iter_mut().enumerate() {
+            f(b * BLOCK + k, o);
+        }
+    });
+}
+
 /// Times `f` (one iteration: all N states, run inside `pool`) as `<group>/<id>`.
 fn bench(
     g: &mut BenchmarkGroup<'_, WallTime>,
@@ -72,6 +82,7 @@ macro_rules! model {
     ($c:expr, $group:expr, $states:expr, $nv:expr,
      id: |$q:ident, $v:ident, $a:ident, $l:ident| $id:expr,
      mm: |$mq:ident| $mm:expr,
+     mm_into: |$iq:ident, $io:ident| $mm_into:expr,
      fd: |$fq:ident, $fv:ident, $ft:ident, $fl:ident| $fd:expr) => {{
         let s = $states;
         let mut out = vec![[0.0_f64; $nv]; N];
@@ -138,6 +149,33 @@ macro_rules! model {
             bench(
                 $c,
                 $group,
+                &format!("mass_matrix_into/f64/{threads}"),
+                &pool,
+                || {
+                    each_state_into(&mut m, |i, $io| {
+                        let $iq = &s.q[i];
+                        $mm_into
+                    });
+                    black_box(&mut m);
+                },
+            );
+            bench(
+                $c,
+                $group,
+                &format!("mass_matrix_into/F64x4/{threads}"),
+                &pool,
+                || {
+                    let r = if threads == 1 {
+                        batch::map1_into(&s.q, &mut m, |$iq, $io| $mm_into)
+                    } else {
+                        batch::par_map1_into(&s.q, &mut m, |$iq, $io| $mm_into)
+                    };
+                    black_box((r.is_ok(), &mut m));
+                },
+            );
+            bench(
+                $c,
+                $group,
                 &format!("forward_dynamics/f64/{threads}"),
                 &pool,
                 || {
@@ -186,6 +224,7 @@ fn benches(c: &mut Criterion) {
     model!(&mut g, "batch/Ur5", States::<UR5, UR5, 0>::new(1, N), UR5,
         id: |q, v, a, l| { let _ = l; Ur5::inverse_dynamics(q, v, a) },
         mm: |q| Ur5::mass_matrix(q),
+        mm_into: |q, out| Ur5::mass_matrix_into(q, out),
         fd: |q, v, t, l| { let _ = l; Ur5::forward_dynamics(q, v, t) });
     g.finish();
     let mut g = c.benchmark_group("batch/Quadruped");
@@ -193,6 +232,7 @@ fn benches(c: &mut Criterion) {
     model!(&mut g, "batch/Quadruped", States::<QUAD_NQ, QUAD_NV, QUAD_NL>::new(2, N), QUAD_NV,
         id: |q, v, a, l| Quadruped::inverse_dynamics(q, v, a, l),
         mm: |q| Quadruped::mass_matrix(q),
+        mm_into: |q, out| Quadruped::mass_matrix_into(q, out),
         fd: |q, v, t, l| Quadruped::forward_dynamics(q, v, t, l));
     g.finish();
 }
@@ -204,14 +244,22 @@ fn table() {
     println!("| model | function | f64, 1 thread | f64, 2 threads | F64x4, 1 thread | F64x4, 2 threads |");
     println!("| --- | --- | ---: | ---: | ---: | ---: |");
     for (model, name) in [("Ur5", "UR5"), ("Quadruped", "quadruped")] {
-        for function in ["inverse_dynamics", "mass_matrix", "forward_dynamics"] {
+        for function in [
+            "inverse_dynamics",
+            "mass_matrix",
+            "mass_matrix_into",
+            "forward_dynamics",
+        ] {
             let cell = |variant: &str, threads: usize| {
                 rate(&format!("batch/{model}/{function}/{variant}/{threads}"))
                     .map_or_else(|| "–".to_owned(), |r| format!("{r:.2}"))
             };
             println!(
                 "| {name} | {} | {} | {} | {} | {} |",
-                function.replace('_', " "),
+                match function.strip_suffix("_into") {
+                    Some(base) => format!("{}, `_into`", base.replace('_', " ")),
+                    None => function.replace('_', " "),
+                },
                 cell("f64", 1),
                 cell("f64", 2),
                 cell("F64x4", 1),

@@ -133,6 +133,10 @@ macro_rules! model {
             black_box(batch::map1(&s.q, &mut m, |$mq| $mm).is_ok());
             black_box(&mut m);
         });
+        bench($c, $name, "mass_matrix_into/F64x4", || {
+            black_box(batch::map1_into(&s.q, &mut m, |$iq, $io| $mm_into).is_ok());
+            black_box(&mut m);
+        });
         bench($c, $name, "forward_dynamics/F64x4", || {
             black_box(
                 batch::map4(

@@ -3,7 +3,7 @@
 //! with the `rayon` feature, the parallel helpers against the sequential ones.
 
 // std's prelude, for the build without the `std` feature (lib.rs).
-use super::{map1, map2, map3, map4, map5, LengthMismatch};
+use super::{map1, map1_into, map2, map2_into, map3, map4, map5, LengthMismatch};
 use crate::{F32x8, F64x4, Scalar};
 #[allow(unused_imports)]
 use std::prelude::rust_2021::*;
@@ -126,6 +126,109 @@ fn every_arity_on_f32_for_every_length() {
     }
 }
 
+/// A wider result, written in place as the generated `_into` functions write theirs: five
+/// rows of six (so the unpacking takes one block of four entries and two single entries
+/// per row) and a vector of seven.
+fn wide_into<T: Scalar>(q: &[T; 3], v: &[T; 3], out: &mut ([[T; 6]; 5], [T; 7])) {
+    let (s, c) = T::sin_cos_array(*q);
+    for (r, row) in out.0.iter_mut().enumerate() {
+        for (k, x) in row.iter_mut().enumerate() {
+            *x = s[k % 3] * T::from_f64(r as f64 + 1.0) + c[(r + k) % 3] * v[k % 3];
+        }
+    }
+    for (k, x) in out.1.iter_mut().enumerate() {
+        *x = v[k % 3] / (c[k % 3] + T::from_f64(2.0)) - q[(k + 1) % 3];
+    }
+}
+
+/// `wide_into` returning its result, for `map2`.
+fn wide<T: Scalar>(q: &[T; 3], v: &[T; 3]) -> ([[T; 6]; 5], [T; 7]) {
+    let mut out = ([[T::zero(); 6]; 5], [T::zero(); 7]);
+    wide_into(q, v, &mut out);
+    out
+}
+
+type Wide = ([[f64; 6]; 5], [f64; 7]);
+
+fn wide_bits(x: &Wide) -> Vec<u64> {
+    x.0.iter()
+        .flatten()
+        .chain(&x.1)
+        .map(|x| x.to_bits())
+        .collect()
+}
+
+/// `map2_into` and `map2` (both unpacking four results at a time, through the 4 × 4
+/// transpose) give each state the scalar call's bits, for every length from 0 to 13.
+#[test]
+fn into_and_returned_results_are_the_scalar_call_for_every_length() {
+    for n in 0..=13 {
+        let (q, v): (Vec<_>, Vec<_>) = (0..n).map(state).unzip();
+        let nan = ([[f64::NAN; 6]; 5], [f64::NAN; 7]);
+        let (mut into, mut returned) = (vec![nan; n], vec![nan; n]);
+        assert_eq!(map2_into(&q, &v, &mut into, wide_into), Ok(()));
+        assert_eq!(map2(&q, &v, &mut returned, wide), Ok(()));
+        for i in 0..n {
+            let expected = wide_bits(&wide(&q[i], &v[i]));
+            assert_eq!(wide_bits(&into[i]), expected, "into, state {i} of {n}");
+            assert_eq!(
+                wide_bits(&returned[i]),
+                expected,
+                "returned, state {i} of {n}"
+            );
+        }
+    }
+}
+
+/// On `f32`'s eight lanes: a last pack of four states goes through the four-at-once
+/// unpacking, other lengths lane by lane; every length from 0 to 20 gives the lanes' call.
+#[test]
+fn into_on_f32_for_every_length() {
+    let f = |x: &[F32x8; 5], out: &mut [[F32x8; 5]; 6]| {
+        for (r, row) in out.iter_mut().enumerate() {
+            for (k, o) in row.iter_mut().enumerate() {
+                *o = x[k] * F32x8::splat(r as f32) - x[(k + r) % 5];
+            }
+        }
+    };
+    for n in 0..=20 {
+        let x: Vec<[f32; 5]> = (0..n)
+            .map(|i| core::array::from_fn(|k| (i * 7 + k) as f32 * 0.25 - 3.0))
+            .collect();
+        let mut out = vec![[[f32::NAN; 5]; 6]; n];
+        assert_eq!(super::map1_into(&x, &mut out, f), Ok(()));
+        for i in 0..n {
+            let mut lanes = [[F32x8::splat(0.0); 5]; 6];
+            f(&x[i].map(F32x8::splat), &mut lanes);
+            let expected = lanes.map(|row| row.map(|x| x.to_array()[0].to_bits()));
+            assert_eq!(
+                out[i].map(|row| row.map(f32::to_bits)),
+                expected,
+                "{i} of {n}"
+            );
+        }
+    }
+}
+
+/// An `_into` function's buffer is not cleared between packs: what `f` leaves unwritten
+/// keeps the previous pack's value (the documented contract: `f` sets every entry).
+#[test]
+fn into_buffer_carries_what_f_does_not_write() {
+    let x: Vec<f64> = (0..8).map(f64::from).collect();
+    let mut out = vec![[0.0; 2]; 8];
+    let mut first = true;
+    let result = map1_into(&x, &mut out, |x: &F64x4, o: &mut [F64x4; 2]| {
+        o[0] = *x;
+        if first {
+            o[1] = *x * F64x4::splat(10.0);
+            first = false;
+        }
+    });
+    assert_eq!(result, Ok(()));
+    assert_eq!(out[5], [5.0, 10.0]);
+    assert_eq!(out[2], [2.0, 20.0]);
+}
+
 /// The last pack of a length that is not a multiple of four is filled with copies of its
 /// last state; one call per pack.
 #[test]
@@ -226,6 +329,17 @@ fn the_parallel_helpers_are_the_sequential_ones() {
         let mut single = vec![0.0; n];
         assert_eq!(par_map1(&q, &mut single, |q| q[0] * q[1]), Ok(()));
         assert!(single.iter().zip(&q).all(|(s, q)| *s == q[0] * q[1]));
+        let zero = ([[0.0; 6]; 5], [0.0; 7]);
+        let (mut seq_into, mut par_into) = (vec![zero; n], vec![zero; n]);
+        assert_eq!(map2_into(&q, &v, &mut seq_into, wide_into), Ok(()));
+        assert_eq!(
+            super::par_map2_into(&q, &v, &mut par_into, wide_into),
+            Ok(())
+        );
+        assert!(seq_into
+            .iter()
+            .zip(&par_into)
+            .all(|(s, p)| wide_bits(s) == wide_bits(p)));
     }
     let mut out = vec![0.0; 3];
     assert_eq!(
