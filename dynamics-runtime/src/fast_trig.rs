@@ -190,18 +190,13 @@ impl LaneBits for u64 {
     }
 }
 
-/// One Horner step on both lanes: [p₀ z + c₀, p₁ z + c₁], fused or not.
+/// One Horner step on both lanes: [p₀ z + c₀, p₁ z + c₁].
 #[inline(always)]
-fn step<V: Lane, const FUSED: bool>(p: [f64; 2], z: V, c0: f64, c1: f64) -> [V; 2] {
-    let (p, c) = (
-        [V::splat(p[0]), V::splat(p[1])],
-        [V::splat(c0), V::splat(c1)],
-    );
-    if FUSED {
-        [p[0].fused_mul_add(z, c[0]), p[1].fused_mul_add(z, c[1])]
-    } else {
-        [p[0] * z + c[0], p[1] * z + c[1]]
-    }
+fn step<V: Lane>(p: [f64; 2], z: V, c0: f64, c1: f64) -> [V; 2] {
+    [
+        V::splat(p[0]) * z + V::splat(c0),
+        V::splat(p[1]) * z + V::splat(c1),
+    ]
 }
 
 /// Sine and cosine of `x` (radians), within 1 ulp of the correctly rounded values for
@@ -244,7 +239,9 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     (sin, cos)
 }
 
-/// [`sin_cos`] with its Estrin steps as `mul_add`, for the benchmark
+/// [`sin_cos`] with every product that one sum uses fused into it (`mul_add`): the
+/// scalar statement of what the AVX2 + FMA kernel (`avx2.rs`) computes four angles at a
+/// time, bit for bit (tested), and the benchmark's
 /// (`cargo bench -p dynamics-runtime --bench sin_cos`): without `-C target-cpu` supporting
 /// FMA, as the workspace builds, each `mul_add` is a call to the C library's `fma`.
 #[inline(always)]
@@ -260,24 +257,31 @@ pub(crate) fn sin_cos_lanes<V: Lane>(x: V) -> (V, V) {
     sin_cos_impl::<V, false>(x)
 }
 
-/// The kernel, on one angle (`f64`) or on the lanes of a SIMD vector ([`Lane`]).
+/// The kernel, on one angle (`f64`) or on the lanes of a SIMD vector ([`Lane`]): the
+/// separate steps of [`sin_cos`], or with `FUSED` the fused ones of [`sin_cos_mul_add`]
+/// (what the AVX2 + FMA copy computes, `avx2.rs`).
 #[inline(always)]
 fn sin_cos_impl<V: Lane, const FUSED: bool>(x: V) -> (V, V) {
+    let (shifted, sin, cos) = if FUSED {
+        fused_steps(x)
+    } else {
+        separate_steps(x)
+    };
+    quadrant(x, shifted, sin, cos)
+}
+
+/// Steps 1 to 3 with separate products and sums: `x·2/π + 1.5·2⁵²` (whose last bits give
+/// the quadrant), and sin r, cos r of the reduced argument.
+#[inline(always)]
+fn separate_steps<V: Lane>(x: V) -> (V, V, V) {
     let k = V::splat;
-    let b = <V::Bits as LaneBits>::splat;
     // 1. n = nearest integer to x·2/π; its last two bits are those of `shifted`.
     let shifted = x * k(FRAC_2_PI) + k(ROUND);
     let n = shifted - k(ROUND);
-    let quadrant = shifted.to_bits();
 
     // 2. r + rl = x − n·π/2 (see the module documentation for why each step is exact).
     let a = x - n * k(PIO2_1);
-    let p2 = n * k(PIO2_2);
-    let p3 = n * k(PIO2_3);
-    let tail = p2 + p3;
-    let tail_low = (p2 - tail) + p3;
-    let r = a - tail;
-    let rl = ((a - r) - tail) - tail_low;
+    let (r, rl) = reduced(a, n);
 
     // 3. The polynomials, both lanes at once.
     let z = r * r;
@@ -286,9 +290,9 @@ fn sin_cos_impl<V: Lane, const FUSED: bool>(x: V) -> (V, V) {
     // Estrin's scheme, (c0 + c1 z) + z² (c2 + c3 z) + z⁴ (c4 + c5 z): one multiplication
     // more than Horner's and a third of its latency (measured: 16 % faster in a dependent
     // chain, 5 % in a stream of independent angles).
-    let lo = step::<V, FUSED>([S[1], C[1]], z, S[0], C[0]);
-    let mid = step::<V, FUSED>([S[3], C[3]], z, S[2], C[2]);
-    let hi = step::<V, FUSED>([S[5], C[5]], z, S[4], C[4]);
+    let lo = step::<V>([S[1], C[1]], z, S[0], C[0]);
+    let mid = step::<V>([S[3], C[3]], z, S[2], C[2]);
+    let hi = step::<V>([S[5], C[5]], z, S[4], C[4]);
     let z4 = z2 * z2;
     let p = [
         lo[0] + (z2 * mid[0] + z4 * hi[0]),
@@ -298,11 +302,66 @@ fn sin_cos_impl<V: Lane, const FUSED: bool>(x: V) -> (V, V) {
     let sin = r + (scaled[0] + (rl - rl * half_z));
     let w = k(1.0) - half_z;
     let cos = w + (((k(1.0) - w) - half_z) + (scaled[1] - r * rl));
+    (shifted, sin, cos)
+}
 
+/// Steps 1 to 3 with every product that one sum uses fused into it (one rounding): 36
+/// floating-point operations against 49, the same method. `x − n·PIO2_1` is exact either
+/// way; n may differ from the separate steps' by one where x·2/π is within an ulp of a
+/// half-integer (|r| is then a hair above π/4, inside the polynomials' fitted range).
+#[inline(always)]
+fn fused_steps<V: Lane>(x: V) -> (V, V, V) {
+    let k = V::splat;
+    let fma = |a: V, b: V, c: V| a.fused_mul_add(b, c);
+    let shifted = fma(x, k(FRAC_2_PI), k(ROUND));
+    let n = shifted - k(ROUND);
+    let a = fma(n, k(-PIO2_1), x);
+    let (r, rl) = reduced(a, n);
+    let z = r * r;
+    // −z/2, exact: the sums below add it where the separate steps subtract z/2.
+    let minus_half_z = k(-0.5) * z;
+    let z2 = z * z;
+    let z4 = z2 * z2;
+    // Estrin's scheme with fused steps: c0 + c1 z + z² (c2 + c3 z) + z⁴ (c4 + c5 z).
+    let estrin = |c: [f64; 6]| {
+        let lo = fma(k(c[1]), z, k(c[0]));
+        let mid = fma(k(c[3]), z, k(c[2]));
+        let hi = fma(k(c[5]), z, k(c[4]));
+        fma(z4, hi, fma(z2, mid, lo))
+    };
+    let (p_sin, p_cos) = (estrin(S), estrin(C));
+    // sin r + rl (1 − z/2) and cos r − r·rl, as in `separate_steps`.
+    let sin = r + fma(r * z, p_sin, fma(rl, minus_half_z, rl));
+    let w = k(1.0) + minus_half_z;
+    // −(r·rl) + z² Q, one rounding: the AVX2 kernel's `vfnmadd` ((−r)·rl is exact).
+    let small = fma(r * k(-1.0), rl, z2 * p_cos);
+    let cos = w + (((k(1.0) - w) + minus_half_z) + small);
+    (shifted, sin, cos)
+}
+
+/// Step 2's tail: r + rl = a − n·(PIO2_2 + PIO2_3), the double-double reduced argument
+/// (module documentation).
+#[inline(always)]
+fn reduced<V: Lane>(a: V, n: V) -> (V, V) {
+    let k = V::splat;
+    let p2 = n * k(PIO2_2);
+    let p3 = n * k(PIO2_3);
+    let tail = p2 + p3;
+    let tail_low = (p2 - tail) + p3;
+    let r = a - tail;
+    let rl = ((a - r) - tail) - tail_low;
+    (r, rl)
+}
+
+/// Step 4 on (sin r, cos r): the quadrant's swap and signs, and NaN for |x| ≥ 2⁵⁰.
+#[inline(always)]
+fn quadrant<V: Lane>(x: V, shifted: V, sin: V, cos: V) -> (V, V) {
+    let b = <V::Bits as LaneBits>::splat;
+    let n_bits = shifted.to_bits();
     // 4. Quadrant: swap when n is odd, negate sin when n mod 4 ∈ {2, 3}, cos when ∈ {1, 2}.
-    let swap = b(0).wrapping_sub(quadrant & b(1));
-    let sin_sign = (quadrant & b(2)).shift_left(62);
-    let cos_sign = (quadrant.wrapping_add(b(1)) & b(2)).shift_left(62);
+    let swap = b(0).wrapping_sub(n_bits & b(1));
+    let sin_sign = (n_bits & b(2)).shift_left(62);
+    let cos_sign = (n_bits.wrapping_add(b(1)) & b(2)).shift_left(62);
     // All ones when |x| ≥ 2⁵⁰ (or NaN): or-ing them in makes a NaN. (2⁵⁰ − 1 − |x|'s bits
     // is negative exactly then; its sign bit, negated, is the mask.)
     let huge = b(0).wrapping_sub(
@@ -372,7 +431,7 @@ mod tests {
 
     /// The stated bound: within 1 ulp of std (glibc, itself within an ulp of the exact value
     /// and almost always correctly rounded) for |x| ≤ 2²⁰·π/2, with separate and with fused
-    /// Estrin steps (`sin_cos_mul_add`, what the AVX2 + FMA kernels compute). Measured on 14 million
+    /// steps (`sin_cos_mul_add`, what the AVX2 + FMA kernels compute). Measured on 14 million
     /// points: uniform on a joint's range and on ±10⁵, log-uniform magnitudes from 10⁻³⁰⁰ to
     /// 1.6·10⁶, a dense grid on [−10, 10], and the seven doubles around the double nearest
     /// to k·π/2 for every 0 < |k| ≤ 2¹⁶ and every 61st k up to 2²⁰ (where the reduction

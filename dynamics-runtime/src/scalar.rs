@@ -91,7 +91,7 @@ pub trait Scalar:
     }
     #[doc(hidden)]
     /// [`Scalar::sin_cos_array`] in the `WIDE` copy of a generated kernel: for `f64` the
-    /// wide copy takes four angles per AVX register with fused Estrin steps
+    /// wide copy takes four angles per AVX register with fused steps
     /// ([`crate::fast_trig::avx2::sin_cos_array`]). The default is `sin_cos_array` in both.
     #[inline(always)]
     fn sin_cos_array_for<const WIDE: bool, const N: usize>(x: [Self; N]) -> ([Self; N], [Self; N]) {

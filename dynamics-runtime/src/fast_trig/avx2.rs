@@ -7,15 +7,21 @@
 //! loop vectorizer sees a loop it has already unrolled, and the SLP vectorizer paired the
 //! sine and cosine polynomials of one angle instead of four angles, half of the code
 //! scalar.
+//!
+//! Every product that one sum uses is fused into it (`vfmadd`, `vfnmadd`): 36
+//! floating-point instructions for four angles, where the separate steps of the baseline
+//! copy take 49. In a loop of independent groups (built for x86-64-v3 so that the kernel
+//! inlines, 21 medians of 500,000 calls) four angles took 7.35 ns against 9.6 ns with the
+//! Estrin steps alone fused (2026-11-29), within 1 ulp of std on the same 14 million points.
 
 #![allow(unsafe_code)] // two transmutes between `[f64; 4]` and `__m256d`; proofs below
 
 use super::{C, FRAC_2_PI, HUGE_BITS, PIO2_1, PIO2_2, PIO2_3, ROUND, S};
 use core::arch::x86_64::{
     __m256d, _mm256_add_epi64, _mm256_add_pd, _mm256_and_si256, _mm256_castpd_si256,
-    _mm256_castsi256_pd, _mm256_cmpgt_epi64, _mm256_fmadd_pd, _mm256_mul_pd, _mm256_or_si256,
-    _mm256_set1_epi64x, _mm256_set1_pd, _mm256_slli_epi64, _mm256_sub_epi64, _mm256_sub_pd,
-    _mm256_xor_si256,
+    _mm256_castsi256_pd, _mm256_cmpgt_epi64, _mm256_fmadd_pd, _mm256_fnmadd_pd, _mm256_mul_pd,
+    _mm256_or_si256, _mm256_set1_epi64x, _mm256_set1_pd, _mm256_slli_epi64, _mm256_sub_epi64,
+    _mm256_sub_pd, _mm256_xor_si256,
 };
 
 /// Sines and cosines of N angles, four at a time, the last group padded with zeros: each
@@ -71,7 +77,7 @@ pub fn sin_cos_groups<const N: usize>(x: &Groups<N>) -> Option<(Groups<N>, Group
     Some((sin, cos))
 }
 
-/// The four lanes of `x`, step by step as `super::sin_cos_impl::<f64, true>`.
+/// The four lanes of `x`, step by step as `super::fused_steps` and `super::quadrant`.
 ///
 /// # Safety
 /// The CPU must have AVX2 and FMA.
@@ -79,41 +85,39 @@ pub fn sin_cos_groups<const N: usize>(x: &Groups<N>) -> Option<(Groups<N>, Group
 #[inline]
 unsafe fn sin_cos_x4(x: [f64; 4]) -> ([f64; 4], [f64; 4]) {
     let splat = |c: f64| _mm256_set1_pd(c);
-    let (add, sub, mul) = (_mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd);
+    let (add, sub, mul, fma) = (_mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd, _mm256_fmadd_pd);
     // SAFETY: `[f64; 4]` and `__m256d` are both 32 bytes, and every bit pattern is a
     // valid value of either.
     let x: __m256d = unsafe { core::mem::transmute::<[f64; 4], __m256d>(x) };
 
     // 1. Quadrant.
-    let shifted = add(mul(x, splat(FRAC_2_PI)), splat(ROUND));
+    let shifted = fma(x, splat(FRAC_2_PI), splat(ROUND));
     let n = sub(shifted, splat(ROUND));
     // 2. Cody–Waite reduction into r + rl.
-    let a = sub(x, mul(n, splat(PIO2_1)));
+    let a = fma(n, splat(-PIO2_1), x);
     let p2 = mul(n, splat(PIO2_2));
     let p3 = mul(n, splat(PIO2_3));
     let tail = add(p2, p3);
     let tail_low = add(sub(p2, tail), p3);
     let r = sub(a, tail);
     let rl = sub(sub(sub(a, r), tail), tail_low);
-    // 3. Polynomials (Estrin; the steps fused, as in `sin_cos_mul_add`).
+    // 3. Polynomials (Estrin, fused, as in `fused_steps`).
     let z = mul(r, r);
-    let half_z = mul(splat(0.5), z);
+    let minus_half_z = mul(splat(-0.5), z);
     let z2 = mul(z, z);
     let z4 = mul(z2, z2);
     let estrin = |k: [f64; 6]| {
-        let lo = _mm256_fmadd_pd(splat(k[1]), z, splat(k[0]));
-        let mid = _mm256_fmadd_pd(splat(k[3]), z, splat(k[2]));
-        let hi = _mm256_fmadd_pd(splat(k[5]), z, splat(k[4]));
-        add(lo, add(mul(z2, mid), mul(z4, hi)))
+        let lo = fma(splat(k[1]), z, splat(k[0]));
+        let mid = fma(splat(k[3]), z, splat(k[2]));
+        let hi = fma(splat(k[5]), z, splat(k[4]));
+        fma(z4, hi, fma(z2, mid, lo))
     };
     let (ps, pc) = (estrin(S), estrin(C));
-    let sin = add(r, add(mul(mul(r, z), ps), sub(rl, mul(rl, half_z))));
+    let sin = add(r, fma(mul(r, z), ps, fma(rl, minus_half_z, rl)));
     let one = splat(1.0);
-    let w = sub(one, half_z);
-    let cos = add(
-        w,
-        add(sub(sub(one, w), half_z), sub(mul(z2, pc), mul(r, rl))),
-    );
+    let w = add(one, minus_half_z);
+    let small = _mm256_fnmadd_pd(r, rl, mul(z2, pc));
+    let cos = add(w, add(add(sub(one, w), minus_half_z), small));
 
     // 4. Quadrant selection by bits; all ones (a NaN) where |x| ≥ 2⁵⁰ or x is NaN.
     let bits = _mm256_castpd_si256;
