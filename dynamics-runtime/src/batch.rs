@@ -27,12 +27,18 @@
 //! unpacking move whole AVX registers. It only moves numbers, and each call still runs the
 //! copy its kernel chooses, so the results are those of that copy either way.
 //!
-//! Speed (the [`lanes`](crate::lanes) module, "Speed"): in a default build an [`F64x4`]
-//! runs in the AVX2 + FMA copy where `f64` does, 1.6 to 2.5× the throughput of `f64`
-//! calls through these helpers for inverse and forward dynamics, 1.0 to 1.7× for mass
-//! matrices, whose results per state (18 × 18 for a quadruped) take about as long to
-//! unpack as to compute (2.2 to 3.1× and 1.6 to 2.2× on states already in lanes); built
-//! with `-C target-cpu=native`, 2.2 to 2.9× for inverse and forward dynamics.
+//! A full pack of [`F64x4`] is unpacked four entries of four results at a time (a 4 × 4
+//! transpose, AVX registers in the AVX2 copy). For functions that write their result into
+//! their last argument, as the generated `_into` functions do, `map1_into`..`map5_into`
+//! keep one packed result for the whole call instead of returning one per pack by value.
+//!
+//! Speed (the [`lanes`](crate::lanes) module, "Speed"; BENCHMARKS.md, "Many states per
+//! call", at 49ca3da): in a default build an [`F64x4`] runs in the AVX2 + FMA copy where
+//! `f64` does; through these helpers, packing included, 1.9 to 2.4× the throughput of
+//! `f64` calls for inverse and forward dynamics on 64 states, 1.4 to 1.9× for mass
+//! matrices (`map1_into`: the quadruped's 18 × 18 result, 2.6 kB a state, 1.55× the `f64`
+//! call that returns it, 1.08× its `_into` call); on states already in lanes 2.4 to 3.0×
+//! and 1.9 to 2.2×.
 //!
 //! # Example
 //!

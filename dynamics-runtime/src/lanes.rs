@@ -52,12 +52,13 @@
 //! # Speed (BENCHMARKS.md, "Many states per call")
 //!
 //! In the default build, on states already in lanes, [`F64x4`] evaluates the UR5's and
-//! the 18-dof quadruped's inverse and forward dynamics 2.2 to 3.1× faster per state than
-//! the `f64` call, their mass matrices 1.6 to 2.2×; through the batch helpers, whose
-//! packing and unpacking take the rest, 1.6 to 2.5× and 1.0 to 1.7×. The mass matrices
-//! gain least because the `f64` call is already partly four-wide. Its AVX2 copy takes its
-//! sines and cosines four angles at a time, so the lanes, four states at a time, save
-//! nothing on them: the quadruped's 12 angles take 33 ns a state either way, a quarter of
+//! the 18-dof quadruped's inverse and forward dynamics 2.4 to 3.0× faster per state than
+//! the `f64` call, their mass matrices 1.9 to 2.2×; through the batch helpers, whose
+//! packing and unpacking take the rest, 1.9 to 2.4× and 1.4 to 1.9× (49ca3da). The mass
+//! matrices gain least because the `f64` call is already partly four-wide. Its AVX2 copy
+//! takes its sines and cosines four angles at a time, so the lanes, four states at a time,
+//! save nothing on them: the quadruped's 12 angles took 33 ns a state either way (before
+//! the kernel's products were all fused, 49ca3da, which cut it by a quarter), a quarter of
 //! its mass matrix, which bounds that function's gain at 2.3×. And LLVM's SLP vectorizer
 //! packs much of the rest (the quadruped's: 294 of its 735 arithmetic instructions work on
 //! four numbers). Returned by value, the lanes' kernel also keeps its 324 results of 32

@@ -9,10 +9,10 @@
 //!
 //! Ids are `lanes/<Model>/<function>/<variant>`, `mass_matrix_into` the mass matrix
 //! written into the result's place (`Robot::mass_matrix_into`, in the `f64` variants and
-//! `F64x4_prepacked`); one measured iteration evaluates the
-//! function on all 64 states of a fixed seeded set (angles in ±π, rates in ±2, torques and
-//! accelerations in ±5, the quadruped's foot forces in [−20, 40] N, unit quaternions) and
-//! keeps every result in memory. Variants:
+//! `F64x4_prepacked`, and through `batch::map1_into` as `F64x4`); one measured iteration
+//! evaluates the function on all 64 states of a fixed seeded set (angles in ±π, rates in
+//! ±2, torques and accelerations in ±5, the quadruped's foot forces in [−20, 40] N, unit
+//! quaternions) and keeps every result in memory. Variants:
 //!
 //! - `f64`: one call per state, on the AVX2 + FMA copy where the CPU has both
 //!   (`isa::choose(true)`; the default choice, `dynamics_runtime::isa`);
