@@ -20,6 +20,17 @@
 //! so allocates once: a real-time program calls [`wide()`] during its start-up, before its
 //! loop (as `models/examples/control_loop.rs` does).
 //!
+//! # The AVX-512 copy (feature `avx512`)
+//!
+//! With the runtime's feature `avx512` (off by default), the wide copy is compiled a second
+//! time with AVX-512F and AVX-512VL on top of AVX2 and FMA, and runs where the CPU has
+//! them (AMD Zen 4 and later, Intel's server parts): the same operations on the same
+//! 256-bit vectors, but 32 vector registers instead of 16, so long kernels keep more of
+//! their values in registers. Each operation is the same IEEE operation, so its results
+//! are those of the AVX2 copy, bit for bit (tested). It costs a third compiled copy of
+//! every generated function that runs, hence opt-in. `DYNAMICS_ISA=avx2` (or
+//! [`choose_avx512`]`(false)`) keeps the AVX2 copy on such a CPU.
+//!
 //! # Without std
 //!
 //! Built without the `std` feature there is no run-time feature detection (and no
@@ -42,6 +53,9 @@ const BASELINE: u8 = 1;
 #[cfg(feature = "std")]
 /// The AVX2 + FMA copies run.
 const WIDE: u8 = 2;
+#[cfg(feature = "std")]
+/// The AVX2 + FMA copies run, compiled with AVX-512F/VL too (feature `avx512`).
+const WIDE_512: u8 = 3;
 
 #[cfg(feature = "std")]
 static CHOICE: AtomicU8 = AtomicU8::new(UNKNOWN);
@@ -54,10 +68,20 @@ static CHOICE: AtomicU8 = AtomicU8::new(UNKNOWN);
 #[must_use]
 pub fn wide() -> bool {
     match CHOICE.load(Ordering::Relaxed) {
-        WIDE => true,
+        WIDE | WIDE_512 => true,
         BASELINE => false,
         _ => decide(),
     }
+}
+
+/// Whether the wide kernels run in their AVX-512 copy ([the module's section](self#the-avx-512-copy-feature-avx512)):
+/// the feature `avx512` is on, the CPU has AVX-512F and AVX-512VL besides AVX2 and FMA,
+/// and neither `DYNAMICS_ISA` nor [`choose`] or [`choose_avx512`] asked otherwise.
+#[cfg(feature = "std")]
+#[inline]
+#[must_use]
+pub fn avx512() -> bool {
+    wide() && CHOICE.load(Ordering::Relaxed) == WIDE_512
 }
 
 /// Asks for the wide kernels (`true`) or the baseline ones (`false`) from now on in this
@@ -68,8 +92,33 @@ pub fn wide() -> bool {
 #[cfg(feature = "std")]
 pub fn choose(wide: bool) -> bool {
     let granted = wide && cpu_has_avx2_fma();
-    CHOICE.store(if granted { WIDE } else { BASELINE }, Ordering::Relaxed);
+    CHOICE.store(widest(granted), Ordering::Relaxed);
     granted
+}
+
+/// With the wide kernels granted, asks for their AVX-512 copy (`true`) or their AVX2 one
+/// (`false`) from now on in this process: to compare the two in one program. Granted only
+/// with the feature `avx512` on a CPU that has AVX-512F and AVX-512VL; returns whether the
+/// AVX-512 copy runs now. Leaves a process pinned to the baseline copies as it is.
+#[cfg(feature = "std")]
+pub fn choose_avx512(on: bool) -> bool {
+    if !wide() {
+        return false;
+    }
+    let granted = on && cpu_has_avx512();
+    CHOICE.store(if granted { WIDE_512 } else { WIDE }, Ordering::Relaxed);
+    granted
+}
+
+/// The choice to store when the wide copies are (or are not) `granted`: their AVX-512
+/// copy where the feature and the CPU allow it.
+#[cfg(feature = "std")]
+fn widest(granted: bool) -> u8 {
+    match (granted, cpu_has_avx512()) {
+        (false, _) => BASELINE,
+        (true, false) => WIDE,
+        (true, true) => WIDE_512,
+    }
 }
 
 /// Detects the features and reads `DYNAMICS_ISA`. Threads racing here store the same
@@ -78,10 +127,28 @@ pub fn choose(wide: bool) -> bool {
 #[cold]
 #[inline(never)]
 fn decide() -> bool {
-    let pinned = std::env::var_os("DYNAMICS_ISA").is_some_and(|v| v == "baseline");
+    let asked = std::env::var_os("DYNAMICS_ISA");
+    let pinned = asked.as_ref().is_some_and(|v| v == "baseline");
     let wide = !pinned && cpu_has_avx2_fma();
-    CHOICE.store(if wide { WIDE } else { BASELINE }, Ordering::Relaxed);
+    let choice = match widest(wide) {
+        WIDE_512 if asked.is_some_and(|v| v == "avx2") => WIDE,
+        choice => choice,
+    };
+    CHOICE.store(choice, Ordering::Relaxed);
     wide
+}
+
+/// Whether the wide kernels may run in their AVX-512 copy: the feature `avx512` and a CPU
+/// with AVX-512F and AVX-512VL (beside AVX2 and FMA, checked by the caller).
+#[cfg(all(target_arch = "x86_64", feature = "avx512"))]
+fn cpu_has_avx512() -> bool {
+    std::arch::is_x86_feature_detected!("avx512f")
+        && std::arch::is_x86_feature_detected!("avx512vl")
+}
+
+#[cfg(all(feature = "std", not(all(target_arch = "x86_64", feature = "avx512"))))]
+fn cpu_has_avx512() -> bool {
+    false
 }
 
 #[cfg(all(target_arch = "x86_64", feature = "std"))]
@@ -204,6 +271,19 @@ pub(crate) fn run_with<A, R>(
         // only when `CHOICE` holds `WIDE`, which `decide` and `choose`, the only places
         // that store it, do only after std's `is_x86_feature_detected!` found both
         // features on this CPU. `avx2_fma` requires nothing else.
+        #[cfg(feature = "avx512")]
+        if CHOICE.load(Ordering::Relaxed) == WIDE_512 {
+            // SAFETY: `avx2_fma_avx512` is compiled for AVX2, FMA, AVX-512F and AVX-512VL;
+            // `CHOICE` holds `WIDE_512` only where `widest` or `choose_avx512` stored it,
+            // after `cpu_has_avx2_fma` and `cpu_has_avx512` (std's
+            // `is_x86_feature_detected!`) found all four on this CPU.
+            return unsafe {
+                avx2_fma_avx512(
+                    #[inline(always)]
+                    || wide(proof, arg),
+                )
+            };
+        }
         return unsafe {
             avx2_fma(
                 #[inline(always)]
@@ -273,6 +353,17 @@ unsafe fn avx2_fma<R>(f: impl FnOnce() -> R) -> R {
     f()
 }
 
+/// `f()` compiled for AVX2, FMA, AVX-512F and AVX-512VL (feature `avx512`): the wide copy
+/// with 32 vector registers.
+///
+/// # Safety
+/// The CPU must have AVX2, FMA, AVX-512F and AVX-512VL.
+#[cfg(all(target_arch = "x86_64", feature = "avx512"))]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
+unsafe fn avx2_fma_avx512<R>(f: impl FnOnce() -> R) -> R {
+    f()
+}
+
 /// `f()` as a function of its own.
 #[inline(never)]
 pub(crate) fn out_of_line<R>(f: impl FnOnce() -> R) -> R {
@@ -298,6 +389,16 @@ mod tests {
         let granted = super::choose(true);
         assert_eq!(granted, super::cpu_has_avx2_fma());
         assert_eq!(super::run(|_| 1, |_| 2) == 1, granted);
+        // The AVX-512 copy (feature `avx512`): granted only with the wide kernels, on a CPU
+        // that has it; switched off and on without leaving the wide kernels.
+        let with_512 = granted && super::cpu_has_avx512();
+        assert_eq!(super::avx512(), with_512);
+        assert!(!super::choose_avx512(false));
+        assert!(super::wide() == granted && !super::avx512());
+        assert_eq!(super::choose_avx512(true), with_512);
+        assert_eq!(super::run(|_| 1, |_| 2) == 1, granted);
+        super::choose(false);
+        assert!(!super::choose_avx512(true) && !super::wide());
         super::choose(automatic);
     }
 }
