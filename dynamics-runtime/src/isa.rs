@@ -263,16 +263,22 @@ pub(crate) fn run_with<A, R>(
     wide: impl FnOnce(Isa<true>, A) -> R,
     narrow: impl FnOnce(Isa<false>, A) -> R,
 ) -> R {
+    run_with_in::<A, R, true>(arg, wide, narrow)
+}
+
+/// [`run_with`], the wide copy's AVX-512 build allowed or not (`AVX512`).
+#[inline(always)]
+fn run_with_in<A, R, const AVX512: bool>(
+    arg: A,
+    wide: impl FnOnce(Isa<true>, A) -> R,
+    narrow: impl FnOnce(Isa<false>, A) -> R,
+) -> R {
     #[cfg(all(target_arch = "x86_64", feature = "std"))]
     if self::wide() {
         // The only place an `Isa<true>` is made: `self::wide()` returned true, see below.
         let proof = Isa::<true> { _proof: () };
-        // SAFETY: `avx2_fma` is compiled for AVX2 and FMA, and `self::wide()` returns true
-        // only when `CHOICE` holds `WIDE`, which `decide` and `choose`, the only places
-        // that store it, do only after std's `is_x86_feature_detected!` found both
-        // features on this CPU. `avx2_fma` requires nothing else.
         #[cfg(feature = "avx512")]
-        if CHOICE.load(Ordering::Relaxed) == WIDE_512 {
+        if AVX512 && CHOICE.load(Ordering::Relaxed) == WIDE_512 {
             // SAFETY: `avx2_fma_avx512` is compiled for AVX2, FMA, AVX-512F and AVX-512VL;
             // `CHOICE` holds `WIDE_512` only where `widest` or `choose_avx512` stored it,
             // after `cpu_has_avx2_fma` and `cpu_has_avx512` (std's
@@ -284,6 +290,11 @@ pub(crate) fn run_with<A, R>(
                 )
             };
         }
+        // SAFETY: `avx2_fma` is compiled for AVX2 and FMA, and `self::wide()` returns true
+        // only when `CHOICE` holds `WIDE` or `WIDE_512`, which `decide`, `choose` and
+        // `choose_avx512`, the only places that store them, do only after std's
+        // `is_x86_feature_detected!` found both features on this CPU. `avx2_fma` requires
+        // nothing else.
         return unsafe {
             avx2_fma(
                 #[inline(always)]
@@ -330,10 +341,15 @@ pub(crate) fn run_piece<R>(
 /// (the quadruped's inverse dynamics through `batch::map4`: 0.76 to 0.81 of the time).
 /// The loop only moves numbers, and each generated function it calls still runs the copy
 /// it chooses itself, with that copy's operations: the results are the same either way.
+///
+/// Never in the AVX-512 build of the wide copy (feature `avx512`): the loop gains nothing
+/// from more registers, and the `F32x8` kernels, which run their baseline code inlined into
+/// it, took 1.3 to 1.4× their time there (lanes benchmark, 2026-11-29); the `F64x4`
+/// kernels it calls still choose that build themselves.
 #[inline(always)]
 pub(crate) fn run_loop<R>(f: impl FnOnce() -> R) -> R {
     // `f` is the argument handed on, so that one closure can own it in either copy.
-    run_with(
+    run_with_in::<_, _, false>(
         f,
         #[inline(always)]
         |_, f| f(),
