@@ -412,6 +412,9 @@ macro_rules! map_fn {
         }
 
         /// The loop of the sequential and parallel `_into` helpers, on slices of equal lengths.
+        /// (The returning helpers keep a loop of their own: moving each returned result into
+        /// this loop's buffer took the quadruped's mass matrix 164.8 ns a state instead of
+        /// 132.0, lanes benchmark.)
         #[inline(always)]
         fn $run_into<$First, $($Arg,)* O, F>(
             $first: &[$First],
