@@ -204,14 +204,7 @@ macro_rules! element_shape {
     )*};
 }
 
-element_shape!(f64: transpose::transpose4, f32: transpose4_f32);
-
-/// `f32`'s four results unpacked number by number ([`F32x8`] fills eight lanes, so the
-/// four-at-once path runs only for a last pack of four).
-#[inline(always)]
-fn transpose4_f32(rows: [[f32; 4]; 4]) -> [[f32; 4]; 4] {
-    core::array::from_fn(|l| core::array::from_fn(|j| rows[j][l]))
-}
+element_shape!(f64: transpose::transpose4, f32: transpose::transpose4_portable);
 
 impl<S: Shape, const K: usize> Shape for [S; K] {
     type Element = S::Element;

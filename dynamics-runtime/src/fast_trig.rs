@@ -305,8 +305,9 @@ fn separate_steps<V: Lane>(x: V) -> (V, V, V) {
     (shifted, sin, cos)
 }
 
-/// Steps 1 to 3 with every product that one sum uses fused into it (one rounding): 36
-/// floating-point operations against 49, the same method. `x − n·PIO2_1` is exact either
+/// Steps 1 to 3 with every product that one sum uses fused into it (one rounding): the
+/// AVX2 kernel's 36 floating-point instructions against 49, the same method (here one more
+/// multiplication, by −1, stands for its `vfnmadd`). `x − n·PIO2_1` is exact either
 /// way; n may differ from the separate steps' by one where x·2/π is within an ulp of a
 /// half-integer (|r| is then a hair above π/4, inside the polynomials' fitted range).
 #[inline(always)]

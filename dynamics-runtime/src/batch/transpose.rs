@@ -20,9 +20,10 @@ pub(super) fn transpose4(rows: [[f64; 4]; 4]) -> [[f64; 4]; 4] {
     transpose4_portable(rows)
 }
 
-/// [`transpose4`] number by number.
+/// [`transpose4`] number by number, for any number type: `f64` without AVX, and `f32`,
+/// whose [`crate::F32x8`] fills a pack of four results only as a last pack.
 #[inline(always)]
-fn transpose4_portable(rows: [[f64; 4]; 4]) -> [[f64; 4]; 4] {
+pub(super) fn transpose4_portable<T: Copy>(rows: [[T; 4]; 4]) -> [[T; 4]; 4] {
     core::array::from_fn(|l| core::array::from_fn(|j| rows[j][l]))
 }
 
@@ -82,7 +83,7 @@ mod tests {
     /// (on a CPU with AVX), and through the dispatch.
     #[test]
     fn every_form_transposes() {
-        check("portable", super::transpose4_portable);
+        check("portable", super::transpose4_portable::<f64>);
         #[cfg(all(target_arch = "x86_64", feature = "std"))]
         if std::arch::is_x86_feature_detected!("avx") {
             // SAFETY: the CPU has AVX, just checked.
