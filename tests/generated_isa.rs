@@ -102,26 +102,20 @@ fn avx512_copy_is_the_avx2_copy() {
         let l: [f64; NL] = std::array::from_fn(|i| x(i + 5) * 10.0);
         (q, v, l)
     };
+    let states: Vec<_> = (0..4).map(state).collect();
+    // Lane i of each packed input is state i's.
+    let lanes = |x: &dyn Fn(usize) -> f64| <F64x4 as Lanes>::from_fn(x);
+    let q4: [F64x4; NQ] = std::array::from_fn(|j| lanes(&|i| states[i].0[j]));
+    let v4: [F64x4; NV] = std::array::from_fn(|j| lanes(&|i| states[i].1[j]));
+    let l4: [F64x4; NL] = std::array::from_fn(|j| lanes(&|i| states[i].2[j]));
     let outputs = || {
         let mut bits = Vec::new();
-        for k in 0..4 {
-            let (q, v, l) = state(k);
-            bits.extend(Quadruped::inverse_dynamics(&q, &v, &v, &l).map(f64::to_bits));
-            bits.extend(Quadruped::forward_dynamics(&q, &v, &v, &l).map(f64::to_bits));
-            let c = Quadruped::coriolis_matrix(&q, &v);
+        for (q, v, l) in &states {
+            bits.extend(Quadruped::inverse_dynamics(q, v, v, l).map(f64::to_bits));
+            bits.extend(Quadruped::forward_dynamics(q, v, v, l).map(f64::to_bits));
+            let c = Quadruped::coriolis_matrix(q, v);
             bits.extend(c.iter().flatten().map(|x| x.to_bits()));
         }
-        let lanes = |x: &dyn Fn(usize) -> f64| <F64x4 as Lanes>::from_fn(x);
-        let packed = |field: usize| {
-            move |i: usize| {
-                let (q, v, l) = state(i);
-                [q.to_vec(), v.to_vec(), l.to_vec()][field].clone()
-            }
-        };
-        let (q, v, l) = (packed(0), packed(1), packed(2));
-        let q4: [F64x4; NQ] = std::array::from_fn(|j| lanes(&|i| q(i)[j]));
-        let v4: [F64x4; NV] = std::array::from_fn(|j| lanes(&|i| v(i)[j]));
-        let l4: [F64x4; NL] = std::array::from_fn(|j| lanes(&|i| l(i)[j]));
         let mut m4 = [[<F64x4 as Lanes>::splat(0.0); NV]; NV];
         Quadruped::mass_matrix_into(&q4, &mut m4);
         let tau4 = Quadruped::inverse_dynamics(&q4, &v4, &v4, &l4);

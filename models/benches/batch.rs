@@ -48,11 +48,7 @@ use states::States;
 /// `out[i] = f(i)` for every state, one call each, in blocks of [`BLOCK`] states over the
 /// current rayon pool's threads.
 fn each_state<O: Send>(out: &mut [O], f: impl Fn(usize) -> O + Sync) {
-    out.par_chunks_mut(BLOCK).enumerate().for_each(|(b, out)| {
-        for (k, o) in out.iter_mut().enumerate() {
-            *o = f(b * BLOCK + k);
-        }
-    });
+    each_state_into(out, |i, o| *o = f(i));
 }
 
 /// `f(i, &mut out[i])` for every state, one call each, as [`each_state`].
