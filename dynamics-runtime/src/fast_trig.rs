@@ -137,6 +137,8 @@ pub(crate) trait LaneBits:
 {
     /// Every lane `x`.
     fn splat(x: u64) -> Self;
+    /// `u64::wrapping_add`, lane by lane.
+    fn wrapping_add(self, other: Self) -> Self;
     /// `u64::wrapping_sub`, lane by lane.
     fn wrapping_sub(self, other: Self) -> Self;
     /// `self << n` (n < 64), lane by lane.
@@ -169,6 +171,10 @@ impl LaneBits for u64 {
     #[inline(always)]
     fn splat(x: u64) -> Self {
         x
+    }
+    #[inline(always)]
+    fn wrapping_add(self, other: Self) -> Self {
+        u64::wrapping_add(self, other)
     }
     #[inline(always)]
     fn wrapping_sub(self, other: Self) -> Self {
@@ -353,12 +359,10 @@ fn reduced<V: Lane>(a: V, n: V) -> (V, V) {
 fn quadrant<V: Lane>(x: V, shifted: V, sin: V, cos: V) -> (V, V) {
     let b = <V::Bits as LaneBits>::splat;
     let n_bits = shifted.to_bits();
-    // 4. Quadrant: swap when n is odd, negate sin when n mod 4 ∈ {2, 3}, cos when ∈ {1, 2}:
-    // sin's sign is n's bit 1, cos's is bit 1 xor bit 0 (`odd`, bit 0 alone in the sign bit).
+    // 4. Quadrant: swap when n is odd, negate sin when n mod 4 ∈ {2, 3}, cos when ∈ {1, 2}.
     let swap = b(0).wrapping_sub(n_bits & b(1));
     let sin_sign = (n_bits & b(2)).shift_left(62);
-    let odd = n_bits.shift_left(63);
-    let cos_sign = sin_sign ^ odd;
+    let cos_sign = (n_bits.wrapping_add(b(1)) & b(2)).shift_left(62);
     // All ones when |x| ≥ 2⁵⁰ (or NaN): or-ing them in makes a NaN. (2⁵⁰ − 1 − |x|'s bits
     // is negative exactly then; its sign bit, negated, is the mask.)
     let huge = b(0).wrapping_sub(

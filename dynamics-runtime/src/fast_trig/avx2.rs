@@ -14,20 +14,21 @@
 //! inlines, 21 medians of 500,000 calls) four angles took 7.35 ns against 9.6 ns with the
 //! Estrin steps alone fused (2026-11-29), within 1 ulp of std on the same 14 million points.
 //!
-//! The quadrant's swap is two `blendv` on n's bit 0 moved into the sign bit, and cos's sign
-//! is sin's xor that same bit: 12 integer-domain instructions where the scalar statement's
-//! xor-swap under a mask took 17, the same bits (tested on 400,000 angles). Five
-//! alternating runs of a throwaway harness (`F64x4::sin_cos_array_for::<true, 8>`, 31
-//! medians of 20,000 calls): 12.1 → 11.4 ns per group of four (2026-11-29).
+//! Tried and not kept (2026-11-29): the quadrant's swap as two `blendv` on n's bit 0, with
+//! cos's sign as sin's xor that bit, 12 integer-domain instructions instead of 17, the same
+//! bits. Alone it was faster (12.1 → 11.4 ns a group, a throwaway harness), but inside the
+//! generated code slower: the UR5's `f64` inverse dynamics 53.5 → 56.6 ns and the
+//! quadruped's mass matrix 122 → 125 ns (medians, binaries run alternately, four rounds),
+//! and cos's sign alone changed nothing measurable.
 
 #![allow(unsafe_code)] // two transmutes between `[f64; 4]` and `__m256d`; proofs below
 
 use super::{C, FRAC_2_PI, HUGE_BITS, PIO2_1, PIO2_2, PIO2_3, ROUND, S};
 use core::arch::x86_64::{
-    __m256d, _mm256_add_pd, _mm256_and_si256, _mm256_blendv_pd, _mm256_castpd_si256,
+    __m256d, _mm256_add_epi64, _mm256_add_pd, _mm256_and_si256, _mm256_castpd_si256,
     _mm256_castsi256_pd, _mm256_cmpgt_epi64, _mm256_fmadd_pd, _mm256_fnmadd_pd, _mm256_mul_pd,
-    _mm256_or_si256, _mm256_set1_epi64x, _mm256_set1_pd, _mm256_slli_epi64, _mm256_sub_pd,
-    _mm256_xor_si256,
+    _mm256_or_si256, _mm256_set1_epi64x, _mm256_set1_pd, _mm256_slli_epi64, _mm256_sub_epi64,
+    _mm256_sub_pd, _mm256_xor_si256,
 };
 
 /// Sines and cosines of N angles, four at a time, the last group padded with zeros: each
@@ -129,18 +130,17 @@ unsafe fn sin_cos_x4(x: [f64; 4]) -> ([f64; 4], [f64; 4]) {
     let bits = _mm256_castpd_si256;
     let int = _mm256_set1_epi64x;
     let quadrant = bits(shifted);
-    // n's bit 0 as the sign bit, the only bit set: `blendv` swaps by it where n is odd,
-    // and it is where cos's sign differs from sin's (`super::quadrant`).
-    let odd = _mm256_slli_epi64::<63>(quadrant);
-    let swapped_sin = _mm256_blendv_pd(sin, cos, _mm256_castsi256_pd(odd));
-    let swapped_cos = _mm256_blendv_pd(cos, sin, _mm256_castsi256_pd(odd));
+    let swap = _mm256_sub_epi64(int(0), _mm256_and_si256(quadrant, int(1)));
     let sin_sign = _mm256_slli_epi64::<62>(_mm256_and_si256(quadrant, int(2)));
-    let cos_sign = _mm256_xor_si256(sin_sign, odd);
+    let cos_sign =
+        _mm256_slli_epi64::<62>(_mm256_and_si256(_mm256_add_epi64(quadrant, int(1)), int(2)));
     let magnitude = _mm256_and_si256(bits(x), int(i64::MAX));
     #[allow(clippy::cast_possible_wrap)] // 2⁵⁰'s bits are below i64::MAX
     let huge = _mm256_cmpgt_epi64(magnitude, int(HUGE_BITS as i64 - 1));
-    let sin = _mm256_or_si256(_mm256_xor_si256(bits(swapped_sin), sin_sign), huge);
-    let cos = _mm256_or_si256(_mm256_xor_si256(bits(swapped_cos), cos_sign), huge);
+    let (sb, cb) = (bits(sin), bits(cos));
+    let d = _mm256_and_si256(_mm256_xor_si256(sb, cb), swap);
+    let sin = _mm256_or_si256(_mm256_xor_si256(_mm256_xor_si256(sb, d), sin_sign), huge);
+    let cos = _mm256_or_si256(_mm256_xor_si256(_mm256_xor_si256(cb, d), cos_sign), huge);
     // SAFETY: as above, same size and every bit pattern valid.
     unsafe {
         (

@@ -41,6 +41,10 @@ impl LaneBits for wide::u64x4 {
         wide::u64x4::splat(x)
     }
     #[inline(always)]
+    fn wrapping_add(self, other: Self) -> Self {
+        self + other // wide's integer `+` wraps
+    }
+    #[inline(always)]
     fn wrapping_sub(self, other: Self) -> Self {
         self - other // wide's integer `−` wraps
     }
