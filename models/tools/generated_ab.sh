@@ -57,6 +57,9 @@ trap 'rm -rf "$work"' EXIT
 target=${CARGO_TARGET_DIR:-$root/target}/generated_ab
 
 mkdir -p "$work/ab/src"
+if [ -n "$public" ]; then
+    printf '%s\n' "$public" > "$work/public.rs"
+fi
 for side in a b; do
     rev=${!side}
     echo "==> $side = $(git -C "$root" rev-parse --short "$rev"): building its compiler" >&2
@@ -65,7 +68,6 @@ for side in a b; do
     CARGO_TARGET_DIR="$target/$side" cargo build --quiet --release \
         --manifest-path "$work/$side/Cargo.toml" -p dynamics-codegen
     if [ -n "$public" ]; then
-        printf '%s\n' "$public" > "$work/public.rs"
         "$target/$side/release/dynamics-codegen" "$work/public.rs" --whole > "$work/ab/src/$side.rs"
     else
         "$target/$side/release/dynamics-codegen" "$work/$side/$file" --only "$struct" \
