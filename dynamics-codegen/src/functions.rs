@@ -1170,6 +1170,64 @@ pub(crate) mod tests {
             .expect("a mechanism! invocation")
     }
 
+    /// The quadruped's four legs share lanes (a slot per level of a leg, four lanes each),
+    /// most of its mass matrix's operations are packed, and M(q) so computed is inverse
+    /// dynamics' columns: M e_k = τ(q, 0, e_k) − τ(q, 0, 0).
+    #[test]
+    fn the_quadruped_s_legs_share_lanes_and_m_is_inverse_dynamics_by_columns() {
+        let mechanism: crate::syntax::Mechanism = syn::parse2(quadruped_tokens()).expect("parses");
+        let model = crate::model::lower(&mechanism).expect("valid");
+        let slots = crate::expand::slots::Slots::of(&model);
+        let lanes: Vec<usize> = slots.slots.iter().map(|s| s.lanes.len()).collect();
+        assert_eq!(
+            lanes,
+            [1, 4, 4, 4],
+            "the base, then hips, thighs and calves side by side"
+        );
+        let functions = compile(quadruped_tokens());
+        let find = |name: &str| {
+            functions
+                .iter()
+                .find(|f| f.spec.name == name)
+                .expect("generated")
+        };
+        let (m, tau) = (find("mass_matrix"), find("inverse_dynamics"));
+        let count = m.op_count();
+        assert!(2 * count.packed > count.total(), "{count}");
+        let mut q: Vec<f64> = (0..model.nq).map(|k| (0.37 * k as f64).sin()).collect();
+        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        let at = |a: &[f64]| {
+            tau.spec.output.values(|nodes| {
+                tau.graph.eval(
+                    |r| match r.array {
+                        Array::Q => q[r.index as usize],
+                        Array::A => a[r.index as usize],
+                        _ => 0.0,
+                    },
+                    nodes,
+                )
+            })
+        };
+        let m_values = m
+            .spec
+            .output
+            .values(|nodes| m.graph.eval(|r| q[r.index as usize], nodes));
+        let bias = at(&vec![0.0; model.nv]);
+        for k in 0..model.nv {
+            let mut e = vec![0.0; model.nv];
+            e[k] = 1.0;
+            let column = at(&e);
+            for i in 0..model.nv {
+                let (got, want) = (m_values[i * model.nv + k], column[i] - bias[i]);
+                assert!(
+                    (got - want).abs() < 1e-12,
+                    "M[{i}][{k}] = {got}, τ says {want}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn puma_inverse_dynamics_meets_the_customized_newton_euler_count() {
         let count = ops(&compile(puma_tokens()), "inverse_dynamics");

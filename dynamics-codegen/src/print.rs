@@ -40,6 +40,11 @@
 //!   bit the separate operations, unless the build targets a CPU with fused multiply-add
 //!   (`-C target-cpu=native`); in the wide copy of `f32`/`f64` it is one FMA instruction,
 //!   one rounding, and of `F64x4` one AVX FMA instruction for the four lanes.
+//! - A packed value (four lanes, `crate::sym`'s `Graph::pack`) is a
+//!   `dynamics_runtime::pack::P4<T>`: `let vN = P4([vA, vB, vC, vD]);` packs four scalars,
+//!   `let vN = vP.0[2];` reads a lane, a scalar operand of a packed operation is
+//!   `P4::splat(vA)`, and a packed multiply-add `P4::mul_add_on(vA, vB, vC, isa)`. Carried
+//!   from one piece to the next, a packed value travels as its four lanes.
 //! - An argument the function does not read is named with a leading underscore.
 //! - No allocation, no branch on data, no panic.
 //!
@@ -587,6 +592,53 @@ fn var(node: Node) -> Ident {
 
 /// The printed pieces of a [`Plan`].
 impl Plan {
+    /// The number of scalars carrying `nodes` between pieces: four for a packed value.
+    fn carry_len(&self, nodes: &[Node]) -> usize {
+        nodes
+            .iter()
+            .map(|n| if self.packed[n.index()] { 4 } else { 1 })
+            .sum()
+    }
+
+    /// `[vA, vB.0[0], vB.0[1], vB.0[2], vB.0[3], …]`: `nodes` as the carry array, a packed
+    /// value as its four lanes.
+    fn carry_value(&self, nodes: &[Node]) -> TokenStream {
+        let entries = nodes.iter().flat_map(|&n| {
+            let v = var(n);
+            if self.packed[n.index()] {
+                (0..4_usize)
+                    .map(|k| {
+                        let k = Literal::usize_unsuffixed(k);
+                        quote!(#v.0[#k])
+                    })
+                    .collect()
+            } else {
+                vec![quote!(#v)]
+            }
+        });
+        quote!([#(#entries),*])
+    }
+
+    /// `let [vA, vB_0, …] = *carry;`, then each packed value rebuilt from its lanes.
+    fn carry_bindings(&self, nodes: &[Node]) -> Vec<TokenStream> {
+        let runtime = crate::runtime_path();
+        let mut names = Vec::new();
+        let mut packs = Vec::new();
+        for &n in nodes {
+            let v = var(n);
+            if self.packed[n.index()] {
+                let lanes: Vec<Ident> = (0..4).map(|k| format_ident!("{v}_{k}")).collect();
+                names.extend(lanes.iter().map(|l| quote!(#l)));
+                packs.push(quote!(let #v = #runtime::pack::P4([#(#lanes),*]);));
+            } else {
+                names.push(quote!(#v));
+            }
+        }
+        let mut stmts = vec![quote!(let [#(#names),*] = *carry;)];
+        stmts.extend(packs);
+        stmts
+    }
+
     /// The statements of piece `p` and its result: the next piece's carry, or `output`.
     fn piece_body(&self, ops: &[Op], p: usize, output: &Output) -> TokenStream {
         let piece = &self.pieces[p];
@@ -597,7 +649,7 @@ impl Plan {
             let carry = self
                 .pieces
                 .get(p + 1)
-                .map(|next| node_array(&next.carry_in));
+                .map(|next| self.carry_value(&next.carry_in));
             let outputs = (!piece.outputs.is_empty()).then(|| node_array(&piece.outputs));
             carry_and_outputs(carry, outputs)
         };
@@ -625,15 +677,14 @@ impl Plan {
         };
         let mut stmts = Vec::new();
         if !piece.carry_in.is_empty() {
-            let names = node_array(&piece.carry_in);
-            stmts.push(quote!(let #names = *carry;));
+            stmts.extend(self.carry_bindings(&piece.carry_in));
         }
         for &n in &piece.leaves {
-            stmts.push(let_node(n, ops[n.index()]));
+            stmts.push(let_node(n, ops[n.index()], &self.packed));
             stmts.extend(writes(n));
         }
         for step in &piece.steps {
-            stmts.push(let_step(step, ops, &self.fused));
+            stmts.push(let_step(step, ops, &self.fused, &self.packed));
             for n in step.defines() {
                 stmts.extend(writes(n));
             }
@@ -658,7 +709,7 @@ impl Plan {
         let carry = self
             .pieces
             .get(p + 1)
-            .map(|next| node_array(&next.carry_in));
+            .map(|next| self.carry_value(&next.carry_in));
         let kept = (!kept.is_empty()).then(|| node_array(kept));
         let result = match (&carry, &kept) {
             (None, None) => None,
@@ -687,7 +738,7 @@ impl Plan {
         let carry = self
             .pieces
             .get(p + 1)
-            .map(|next| array(next.carry_in.len()));
+            .map(|next| array(self.carry_len(&next.carry_in)));
         let outputs = self.pieces[p].outputs.len();
         let outputs = (outputs > 0).then(|| array(outputs));
         carry_and_outputs(carry, outputs)
@@ -769,7 +820,7 @@ impl Plan {
         let mut args: Vec<TokenStream> = args.iter().map(|a| quote!(#a)).collect();
         if !piece.carry_in.is_empty() {
             let carry = format_ident!("carry_{p}");
-            let k = Literal::usize_unsuffixed(piece.carry_in.len());
+            let k = Literal::usize_unsuffixed(self.carry_len(&piece.carry_in));
             params.push(quote!(carry: &[T; #k]));
             args.push(quote!(&#carry));
         }
@@ -831,7 +882,7 @@ impl Plan {
         let leaves = self
             .output_leaves
             .iter()
-            .map(|&n| let_node(n, ops[n.index()]));
+            .map(|&n| let_node(n, ops[n.index()], &self.packed));
         // Built outside the kernels: a solve loop runs in the copy `T::run_kernel` chooses,
         // or in the baseline copy when the function has only that one.
         let output = match &spec.output {
@@ -888,7 +939,7 @@ impl Plan {
             let carry_type = self
                 .pieces
                 .get(p + 1)
-                .map(|next| array(next.carry_in.len()));
+                .map(|next| array(self.carry_len(&next.carry_in)));
             let kept_type = (!kept.is_empty()).then(|| array(kept.len()));
             let returned = carry_and_outputs(carry_type, kept_type);
             let doc = format!(" Piece {} of {n}.", p + 1);
@@ -938,7 +989,7 @@ impl Plan {
         }
         let mut leaves = Vec::new();
         for &node in &self.output_leaves {
-            leaves.push(let_node(node, ops[node.index()]));
+            leaves.push(let_node(node, ops[node.index()], &self.packed));
             let v = var(node);
             let writes = places.get(&node).into_iter().flatten();
             leaves.extend(writes.map(|place| quote!(#place = #v;)));
@@ -951,10 +1002,21 @@ impl Plan {
     }
 }
 
+/// `vN`, or `P4::splat(vN)` when the operation is `packed` and `vN` a scalar.
+fn operand(n: Node, packed: bool, is_packed: &[bool]) -> TokenStream {
+    let v = var(n);
+    if packed && !is_packed[n.index()] {
+        let runtime = crate::runtime_path();
+        quote!(#runtime::pack::P4::splat(#v))
+    } else {
+        quote!(#v)
+    }
+}
+
 /// The live non-leaf nodes as statements, in [`crate::schedule`]'s depth-first order: the
 /// sines and cosines of two or more inputs merged into one [`Step::Batch`] at the first of
 /// them, other `let vN = …;` for a single node.
-fn let_node(node: Node, op: Op) -> TokenStream {
+fn let_node(node: Node, op: Op, is_packed: &[bool]) -> TokenStream {
     let v = var(node);
     let expr = match op {
         Op::Const(c) => {
@@ -962,10 +1024,10 @@ fn let_node(node: Node, op: Op) -> TokenStream {
             quote!(T::from_f64(#lit))
         }
         Op::Input(_) => input_expr(op),
-        Op::Add(a, b) => bin(a, quote!(+), b),
-        Op::Sub(a, b) => bin(a, quote!(-), b),
-        Op::Mul(a, b) => bin(a, quote!(*), b),
-        Op::Div(a, b) => bin(a, quote!(/), b),
+        Op::Add(a, b) => bin(a, quote!(+), b, is_packed),
+        Op::Sub(a, b) => bin(a, quote!(-), b, is_packed),
+        Op::Mul(a, b) => bin(a, quote!(*), b, is_packed),
+        Op::Div(a, b) => bin(a, quote!(/), b, is_packed),
         Op::Neg(a) => {
             let a = var(a);
             quote!(-#a)
@@ -973,17 +1035,37 @@ fn let_node(node: Node, op: Op) -> TokenStream {
         Op::Sin(a) => call("sin", a),
         Op::Cos(a) => call("cos", a),
         Op::Sqrt(a) => call("sqrt", a),
+        Op::Pack(a, b, c, d) => {
+            let runtime = crate::runtime_path();
+            let (a, b, c, d) = (var(a), var(b), var(c), var(d));
+            quote!(#runtime::pack::P4([#a, #b, #c, #d]))
+        }
+        Op::Lane(a, k) => {
+            let a = var(a);
+            let k = Literal::u8_unsuffixed(k);
+            quote!(#a.0[#k])
+        }
     };
     quote!(let #v = #expr;)
 }
 
 /// The statement of a step.
-fn let_step(step: &Step, ops: &[Op], fused: &HashMap<Node, Fused>) -> TokenStream {
+fn let_step(
+    step: &Step,
+    ops: &[Op],
+    fused: &HashMap<Node, Fused>,
+    is_packed: &[bool],
+) -> TokenStream {
     match step {
         Step::One(n) => match fused.get(n) {
             Some(f) => {
                 let v = var(*n);
-                let (x, y, c) = (var(f.x), var(f.y), var(f.c));
+                let packed = is_packed[n.index()];
+                let (x, y, c) = (
+                    operand(f.x, packed, is_packed),
+                    operand(f.y, packed, is_packed),
+                    operand(f.c, packed, is_packed),
+                );
                 let x = if f.negate_product {
                     quote!(-#x)
                 } else {
@@ -994,9 +1076,14 @@ fn let_step(step: &Step, ops: &[Op], fused: &HashMap<Node, Fused>) -> TokenStrea
                 } else {
                     quote!(#c)
                 };
-                quote!(let #v = isa.mul_add(#x, #y, #c);)
+                if packed {
+                    let runtime = crate::runtime_path();
+                    quote!(let #v = #runtime::pack::P4::mul_add_on(#x, #y, #c, isa);)
+                } else {
+                    quote!(let #v = isa.mul_add(#x, #y, #c);)
+                }
             }
-            None => let_node(*n, ops[n.index()]),
+            None => let_node(*n, ops[n.index()], is_packed),
         },
         Step::SinCos { sin, cos, arg } => {
             let (s, c, x) = (var(*sin), var(*cos), var(*arg));
@@ -1033,8 +1120,9 @@ fn input_expr(op: Op) -> TokenStream {
     }
 }
 
-fn bin(a: Node, op: TokenStream, b: Node) -> TokenStream {
-    let (a, b) = (var(a), var(b));
+fn bin(a: Node, op: TokenStream, b: Node, is_packed: &[bool]) -> TokenStream {
+    let packed = is_packed[a.index()] || is_packed[b.index()];
+    let (a, b) = (operand(a, packed, is_packed), operand(b, packed, is_packed));
     quote!(#a #op #b)
 }
 

@@ -123,6 +123,8 @@ pub(crate) struct Plan {
     /// The outputs that are leaves (inputs and constants), in id order: read by the last
     /// piece, or by the emitted function itself when the pieces hand their outputs back.
     pub output_leaves: BTreeSet<Node>,
+    /// Whether each node of the graph is packed (four lanes, `Graph::pack`).
+    pub packed: Vec<bool>,
 }
 
 /// The most pieces whose outputs are carried to the last piece; a function cut into more
@@ -133,6 +135,11 @@ pub(crate) struct Plan {
 /// slower (3.30 → 3.75 µs) and the Panda's 3-piece one 8 % faster (1.17 → 1.08 µs), two
 /// alternating runs of `cargo bench -p models --bench dynamics` each.
 pub(crate) const HAND_BACK_ABOVE_PIECES: usize = 8;
+
+/// What a statement on packed values counts for against [`FunctionSpec::split_threshold`]:
+/// four, one per lane. Counted as one, the 30-link chain's mass matrix in a debug build
+/// overflowed a test thread's 2 MB stack (its pieces' frames hold four lanes a value).
+const PACKED_STATEMENT_WEIGHT: usize = 4;
 
 impl Plan {
     /// The statements of the function `spec` describes over `graph`, with the products
@@ -173,15 +180,27 @@ impl Plan {
         let steps = schedule(ops, live, outputs, &fused);
         // The inputs and constants read count too: the whole body's statements.
         let leaves = live.nodes().filter(|n| ops[n.index()].is_leaf()).count();
-        let n_pieces = (steps.len() + leaves).div_ceil(threshold.max(1)).max(1);
-        let per_piece = steps.len().div_ceil(n_pieces).max(1);
-        let mut pieces: Vec<Piece> = steps
-            .chunks(per_piece)
-            .map(|chunk| Piece {
-                steps: chunk.to_vec(),
-                ..Piece::default()
-            })
-            .collect();
+        // A packed statement weighs four: its values take four lanes' room in an
+        // unoptimized build's stack frame, which the threshold also bounds.
+        let weight = |step: &Step| match step {
+            Step::One(n) if graph.is_packed(*n) => PACKED_STATEMENT_WEIGHT,
+            _ => 1,
+        };
+        let total: usize = steps.iter().map(weight).sum();
+        let n_pieces = (total + leaves).div_ceil(threshold.max(1)).max(1);
+        let per_piece = total.div_ceil(n_pieces).max(1);
+        let mut pieces: Vec<Piece> = Vec::new();
+        let mut filled = 0;
+        for step in steps {
+            if pieces.is_empty() || filled >= per_piece {
+                pieces.push(Piece::default());
+                filled = 0;
+            }
+            filled += weight(&step);
+            if let Some(piece) = pieces.last_mut() {
+                piece.steps.push(step);
+            }
+        }
         if pieces.is_empty() {
             pieces.push(Piece::default());
         }
@@ -261,6 +280,7 @@ impl Plan {
             fused,
             hands_back,
             output_leaves,
+            packed: graph.packed_flags(),
         }
     }
 }

@@ -49,6 +49,8 @@ pub mod language;
 mod mechanism;
 #[cfg(feature = "std")]
 mod model;
+#[doc(hidden)]
+pub mod pack;
 #[cfg(feature = "std")]
 mod reference;
 mod scalar;

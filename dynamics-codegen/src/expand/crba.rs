@@ -16,11 +16,21 @@
 //! Entries between bodies on different branches are zero and cost nothing. M depends on the
 //! inertias only through the kinetic energy, so the generated function is expanded over
 //! base inertial parameters ([`crate::passes::base_parameters`]).
+//!
+//! M runs over [`Slots`]: isomorphic limbs (a humanoid's legs, its arms, a quadruped's four
+//! legs) side by side in the lanes of packed values, so that one operation moves the
+//! composite inertias, or carries the columns, of two to four limbs; above the limbs, and
+//! wherever two or more single columns meet, the columns f travel packed four to a value,
+//! one transform applied to the four. Lane by lane it is the same arithmetic; only the
+//! order in which a parent adds up its children's composite inertias follows the slots.
+//! The humanoid g1's M (35 dof): 4,266 operations column by column, 2,311 so (2,114 of
+//! them on four lanes).
 
 use super::geometry::{self, BodyInertia, JointTransform};
+use super::slots::{SlotParent, Slots};
 use super::spatial::{congruence, inertia_times, motion_subspace, symmetric};
 use crate::model::Model;
-use crate::sym::{Graph, Node, Vec3};
+use crate::sym::{Graph, Mat3, Node, Vec3};
 
 /// Composite inertias of every body's subtree, about its origin, in its frame.
 pub fn composite_inertias(
@@ -68,45 +78,168 @@ fn project(g: &Graph, column: &(Vec3, Vec3), force: Vec3, moment: Vec3) -> Node 
     g.add(column.0.dot(g, force), column.1.dot(g, moment))
 }
 
+/// A wrench f = I^c_j s_j on its way up the tree, in the frame of the slot it has reached,
+/// and the columns of M it makes: lane k is column `columns[k]`.
+struct ColumnWrench {
+    force: Vec3,
+    moment: Vec3,
+    columns: Vec<usize>,
+}
+
+impl ColumnWrench {
+    fn is_scalar(&self, g: &Graph) -> bool {
+        self.columns.len() == 1
+            && !self
+                .force
+                .0
+                .iter()
+                .chain(&self.moment.0)
+                .any(|&n| g.is_packed(n))
+    }
+}
+
+/// The fewest single columns at a body that travel on packed: two or more share every
+/// step above it at the cost of one.
+const PACK_COLUMNS_FROM: usize = 2;
+
+/// Single columns' wrenches packed four at a time, in column order (so that a row's
+/// entries of one pack are adjacent in M); the others as they are.
+fn pack_single_columns(g: &Graph, wrenches: Vec<ColumnWrench>) -> Vec<ColumnWrench> {
+    let (mut singles, mut out): (Vec<_>, Vec<_>) =
+        wrenches.into_iter().partition(|w| w.is_scalar(g));
+    if singles.len() < PACK_COLUMNS_FROM {
+        out.extend(singles);
+        return out;
+    }
+    singles.sort_by_key(|w| w.columns[0]);
+    for chunk in singles.chunks(4) {
+        let lanes = |value: &dyn Fn(&ColumnWrench) -> Node| {
+            g.pack(std::array::from_fn(|k| {
+                value(&chunk[k.min(chunk.len() - 1)])
+            }))
+        };
+        out.push(ColumnWrench {
+            force: Vec3(std::array::from_fn(|i| lanes(&|w| w.force.0[i]))),
+            moment: Vec3(std::array::from_fn(|i| lanes(&|w| w.moment.0[i]))),
+            columns: chunk.iter().map(|w| w.columns[0]).collect(),
+        });
+    }
+    out
+}
+
 /// M(q), full and symmetric, with armature on the diagonal.
+///
+/// Isomorphic limbs are computed side by side ([`Slots`]): their composite inertias and
+/// columns in the lanes of packed values. Above them, and wherever two or more single
+/// columns meet, the columns travel packed four to a value, each step's transform
+/// applied to the four at once.
 pub fn mass_matrix(
     g: &Graph,
     model: &Model,
     transforms: &[JointTransform],
     inertias: &[BodyInertia],
 ) -> Vec<Vec<Node>> {
-    let composite = composite_inertias(g, model, transforms, inertias);
-    let subspaces: Vec<Vec<(Vec3, Vec3)>> = model
-        .bodies
-        .iter()
-        .map(|b| motion_subspace(g, &b.joint.kind))
-        .collect();
+    let slots = Slots::of(model);
+    let transforms = slots.transforms(g, transforms);
+    let composite = slot_composite_inertias(g, &slots, &transforms, &slots.inertias(g, inertias));
     let mut m = vec![vec![g.zero(); model.nv]; model.nv];
-    for (j, body) in model.bodies.iter().enumerate() {
-        let c = &composite[j];
-        for (col, s) in subspaces[j].iter().enumerate() {
-            let column = body.joint.idx_v + col;
-            let (mut force, mut moment) = inertia_times(g, c, *s);
-            for (row_in_joint, s_row) in subspaces[j].iter().enumerate() {
-                let row = body.joint.idx_v + row_in_joint;
-                m[row][column] = project(g, s_row, force, moment);
-            }
-            let mut i = j;
-            while let Some(p) = model.bodies[i].parent {
-                (force, moment) = geometry::wrench_to_parent(g, &transforms[i], force, moment);
-                i = p;
-                for (row_in_joint, s_row) in subspaces[i].iter().enumerate() {
-                    let row = model.bodies[i].joint.idx_v + row_in_joint;
-                    let entry = project(g, s_row, force, moment);
-                    m[row][column] = entry;
-                    m[column][row] = entry;
+    let mut arriving: Vec<Vec<ColumnWrench>> = slots.slots.iter().map(|_| Vec::new()).collect();
+    for s in (0..slots.slots.len()).rev() {
+        let slot = &slots.slots[s];
+        let joint = &model.bodies[slot.lanes[0]].joint;
+        let subspace = motion_subspace(g, &joint.kind);
+        let mut wrenches = std::mem::take(&mut arriving[s]);
+        for (col, s_col) in subspace.iter().enumerate() {
+            let (force, moment) = inertia_times(g, &composite[s], *s_col);
+            let columns = slot
+                .lanes
+                .iter()
+                .map(|&b| model.bodies[b].joint.idx_v + col)
+                .collect();
+            wrenches.push(ColumnWrench {
+                force,
+                moment,
+                columns,
+            });
+        }
+        if slot.lanes.len() == 1 && slot.parent != SlotParent::Ground {
+            wrenches = pack_single_columns(g, wrenches);
+        }
+        for w in &wrenches {
+            for (row_in_joint, s_row) in subspace.iter().enumerate() {
+                let entry = project(g, s_row, w.force, w.moment);
+                for (k, &column) in w.columns.iter().enumerate() {
+                    // In a packed slot lane k is both the row's body and the column's.
+                    let row_joint = &model.bodies[slot.lanes[k.min(slot.lanes.len() - 1)]].joint;
+                    let row = row_joint.idx_v + row_in_joint;
+                    let value = g.lane(entry, k);
+                    m[row][column] = value;
+                    if !(row_joint.idx_v..row_joint.idx_v + joint.kind.dofs()).contains(&column) {
+                        m[column][row] = value;
+                    }
                 }
             }
         }
-        let armature = geometry::value(g, &body.joint.armature);
-        for k in body.joint.idx_v..body.joint.idx_v + body.joint.kind.dofs() {
-            m[k][k] = g.add(m[k][k], armature);
+        let up = match slot.parent {
+            SlotParent::Ground => None,
+            SlotParent::Packed(p) => Some(p),
+            SlotParent::Body(b) => Some(slots.of_body[b].0),
+        };
+        if let Some(p) = up {
+            for w in wrenches {
+                let (force, moment) =
+                    geometry::wrench_to_parent(g, &transforms[s], w.force, w.moment);
+                arriving[p].push(ColumnWrench {
+                    force,
+                    moment,
+                    columns: w.columns,
+                });
+            }
+        }
+        for &b in &slot.lanes {
+            let joint = &model.bodies[b].joint;
+            let armature = geometry::value(g, &joint.armature);
+            for k in joint.idx_v..joint.idx_v + joint.kind.dofs() {
+                m[k][k] = g.add(m[k][k], armature);
+            }
         }
     }
     m
+}
+
+/// [`composite_inertias`] by slots: each slot's lanes' composite inertias, packed as the
+/// slot is; a scalar parent takes each lane's in turn.
+fn slot_composite_inertias(
+    g: &Graph,
+    slots: &Slots,
+    transforms: &[JointTransform],
+    inertias: &[BodyInertia],
+) -> Vec<BodyInertia> {
+    let mut composite = inertias.to_vec();
+    for s in (0..slots.slots.len()).rev() {
+        let slot = &slots.slots[s];
+        let moved = match slot.parent {
+            SlotParent::Ground => continue,
+            _ => to_parent(g, &transforms[s], &composite[s]),
+        };
+        let (p, lanes) = match slot.parent {
+            SlotParent::Packed(p) => (p, vec![None]),
+            SlotParent::Body(b) => (
+                slots.of_body[b].0,
+                (0..slot.lanes.len()).map(Some).collect(),
+            ),
+            SlotParent::Ground => continue,
+        };
+        for k in lanes {
+            let lane = |x: Node| k.map_or(x, |k| g.lane(x, k));
+            let acc = &mut composite[p];
+            acc.mass = g.add(acc.mass, lane(moved.mass));
+            acc.first_moment = acc
+                .first_moment
+                .add(g, Vec3(moved.first_moment.0.map(lane)));
+            let rotational = Mat3(moved.inertia_about_origin.0.map(|row| row.map(lane)));
+            acc.inertia_about_origin = acc.inertia_about_origin.add(g, rotational);
+        }
+    }
+    composite
 }

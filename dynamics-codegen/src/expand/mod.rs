@@ -11,7 +11,8 @@
 //! | [`geometry`] | each body's joint transform (E, r) and inertia (m, h = m c, I_P) |
 //! | [`spatial`] | six-vectors, the symmetric 3×3 helpers, a joint's motion subspace |
 //! | [`rnea`] | the Newton–Euler sweeps: motions, body equations about P, joint wrenches and τ |
-//! | [`crba`] | composite inertias and the mass matrix |
+//! | [`slots`] | isomorphic sibling limbs grouped side by side, one per lane of packed values |
+//! | [`crba`] | composite inertias and the mass matrix (by slots, packed) |
 //! | [`coriolis`] | the Christoffel-consistent Coriolis matrix |
 //! | [`aba`] | the articulated-body algorithm |
 //! | [`ldlt`] | the tree-sparse LDLᵀ solve of M q̈ = τ − bias |
@@ -37,6 +38,7 @@ pub(crate) mod ldlt;
 pub(crate) mod qr;
 pub(crate) mod rnea;
 pub(crate) mod rnea_derivatives;
+pub(crate) mod slots;
 pub(crate) mod spatial;
 pub(crate) mod statics;
 

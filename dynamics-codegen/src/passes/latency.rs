@@ -44,6 +44,8 @@ fn latency(op: Op) -> u32 {
         Op::Div(..) => 14,
         Op::Sqrt(_) => 18,
         Op::Sin(_) | Op::Cos(_) => 40,
+        Op::Pack(..) => 3,
+        Op::Lane(..) => 1,
     }
 }
 

@@ -68,6 +68,9 @@ pub struct OpCount {
     pub sqrt: usize,
     /// Sines and cosines, each counted (a `sin_cos` pair counts 2).
     pub trig: usize,
+    /// How many of the operations above are on packed values (four lanes in one SIMD
+    /// instruction; `Graph::pack`).
+    pub packed: usize,
 }
 
 /// `47 mul, 39 add, 0 div, 2 trig`; negations and square roots are listed (before `trig`)
@@ -81,7 +84,11 @@ impl fmt::Display for OpCount {
         if self.sqrt > 0 {
             write!(f, ", {} sqrt", self.sqrt)?;
         }
-        write!(f, ", {} trig", self.trig)
+        write!(f, ", {} trig", self.trig)?;
+        if self.packed > 0 {
+            write!(f, " ({} of them on 4 lanes)", self.packed)?;
+        }
+        Ok(())
     }
 }
 
@@ -125,13 +132,16 @@ impl Graph {
         let mut count = OpCount::default();
         for node in self.live(outputs).nodes() {
             match self.op(node) {
-                Op::Const(_) | Op::Input(_) => {}
+                Op::Const(_) | Op::Input(_) | Op::Pack(..) | Op::Lane(..) => {}
                 Op::Add(..) | Op::Sub(..) => count.add += 1,
                 Op::Mul(..) => count.mul += 1,
                 Op::Div(..) => count.div += 1,
                 Op::Neg(_) => count.neg += 1,
                 Op::Sqrt(_) => count.sqrt += 1,
                 Op::Sin(_) | Op::Cos(_) => count.trig += 1,
+            }
+            if self.is_packed(node) && !matches!(self.op(node), Op::Pack(..)) {
+                count.packed += 1;
             }
         }
         count
@@ -147,23 +157,27 @@ impl Graph {
     pub fn eval(&self, input: impl Fn(InputRef) -> f64, outputs: &[Node]) -> Vec<f64> {
         let live = self.live(outputs);
         let ops = self.inner.borrow();
-        let mut value = vec![f64::NAN; ops.ops.len()];
+        // Four lanes a node: a scalar's value in every lane.
+        let mut value = vec![[f64::NAN; 4]; ops.ops.len()];
         for node in live.nodes() {
             let v = |n: Node| value[n.index()];
+            let lanes = |f: &dyn Fn(usize) -> f64| std::array::from_fn(f);
             value[node.index()] = match ops.ops[node.index()] {
-                Op::Const(c) => c.value(),
-                Op::Input(r) => input(r),
-                Op::Add(a, b) => v(a) + v(b),
-                Op::Sub(a, b) => v(a) - v(b),
-                Op::Mul(a, b) => v(a) * v(b),
-                Op::Div(a, b) => v(a) / v(b),
-                Op::Neg(a) => -v(a),
-                Op::Sin(a) => v(a).sin(),
-                Op::Cos(a) => v(a).cos(),
-                Op::Sqrt(a) => v(a).sqrt(),
+                Op::Const(c) => [c.value(); 4],
+                Op::Input(r) => [input(r); 4],
+                Op::Add(a, b) => lanes(&|k| v(a)[k] + v(b)[k]),
+                Op::Sub(a, b) => lanes(&|k| v(a)[k] - v(b)[k]),
+                Op::Mul(a, b) => lanes(&|k| v(a)[k] * v(b)[k]),
+                Op::Div(a, b) => lanes(&|k| v(a)[k] / v(b)[k]),
+                Op::Neg(a) => lanes(&|k| -v(a)[k]),
+                Op::Sin(a) => lanes(&|k| v(a)[k].sin()),
+                Op::Cos(a) => lanes(&|k| v(a)[k].cos()),
+                Op::Sqrt(a) => lanes(&|k| v(a)[k].sqrt()),
+                Op::Pack(a, b, c, d) => [v(a)[0], v(b)[0], v(c)[0], v(d)[0]],
+                Op::Lane(a, k) => [v(a)[usize::from(k)]; 4],
             };
         }
-        outputs.iter().map(|n| value[n.index()]).collect()
+        outputs.iter().map(|n| value[n.index()][0]).collect()
     }
 
     /// The live part of the graph for `outputs`, one `vN = …` line per node, then the
@@ -232,6 +246,7 @@ mod tests {
                 neg: 1,
                 sqrt: 1,
                 trig: 2,
+                packed: 0,
             }
         );
         assert_eq!(
@@ -245,6 +260,14 @@ mod tests {
             ..OpCount::default()
         };
         assert_eq!(plain.to_string(), "47 mul, 39 add, 0 div, 2 trig");
+        let packed = OpCount {
+            packed: 80,
+            ..plain
+        };
+        assert_eq!(
+            packed.to_string(),
+            "47 mul, 39 add, 0 div, 2 trig (80 of them on 4 lanes)"
+        );
     }
 
     #[test]

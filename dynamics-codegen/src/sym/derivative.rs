@@ -31,6 +31,8 @@ impl Graph {
                 Op::Sin(a) => self.mul(self.cos(a), d(a)),
                 Op::Cos(a) => self.neg(self.mul(self.sin(a), d(a))),
                 Op::Sqrt(a) => self.div(d(a), self.mul(self.constant(2.0), node)),
+                Op::Pack(a, b, c, e) => self.pack([d(a), d(b), d(c), d(e)]),
+                Op::Lane(a, k) => self.lane(d(a), usize::from(k)),
             };
             dot[node.index()] = Some(derivative);
         }
@@ -65,6 +67,8 @@ impl Graph {
                 Op::Sin(a) => self.sin(n(a)),
                 Op::Cos(a) => self.cos(n(a)),
                 Op::Sqrt(a) => self.sqrt(n(a)),
+                Op::Pack(a, b, c, d) => self.pack([n(a), n(b), n(c), n(d)]),
+                Op::Lane(a, k) => self.lane(n(a), usize::from(k)),
             };
             new[node.index()] = Some(rebuilt);
         }

@@ -40,6 +40,7 @@
 mod analysis;
 mod derivative;
 mod linalg;
+mod pack;
 mod rules;
 
 pub use analysis::{LiveSet, OpCount};
@@ -169,17 +170,27 @@ pub enum Op {
     Cos(Node),
     /// `√a`.
     Sqrt(Node),
+    /// Four scalar values side by side, one per lane (a packed value; arithmetic with a
+    /// packed operand is packed, a scalar operand taking part in every lane).
+    Pack(Node, Node, Node, Node),
+    /// Lane `k` of a packed value.
+    Lane(Node, u8),
 }
 
 impl Op {
     /// The operands, in order.
     pub fn children(self) -> impl Iterator<Item = Node> {
-        let (a, b) = match self {
-            Op::Const(_) | Op::Input(_) => (None, None),
-            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => (Some(a), Some(b)),
-            Op::Neg(a) | Op::Sin(a) | Op::Cos(a) | Op::Sqrt(a) => (Some(a), None),
+        let operands = match self {
+            Op::Const(_) | Op::Input(_) => [None; 4],
+            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => {
+                [Some(a), Some(b), None, None]
+            }
+            Op::Neg(a) | Op::Sin(a) | Op::Cos(a) | Op::Sqrt(a) | Op::Lane(a, _) => {
+                [Some(a), None, None, None]
+            }
+            Op::Pack(a, b, c, d) => [Some(a), Some(b), Some(c), Some(d)],
         };
-        a.into_iter().chain(b)
+        operands.into_iter().flatten()
     }
 
     /// The same operation on the operands `f` gives for its own (commutative operands put
@@ -196,6 +207,8 @@ impl Op {
             Op::Sin(a) => Op::Sin(f(a)),
             Op::Cos(a) => Op::Cos(f(a)),
             Op::Sqrt(a) => Op::Sqrt(f(a)),
+            Op::Pack(a, b, c, d) => Op::Pack(f(a), f(b), f(c), f(d)),
+            Op::Lane(a, k) => Op::Lane(f(a), k),
         }
     }
 
@@ -220,6 +233,8 @@ impl fmt::Display for Op {
             Op::Sin(a) => write!(f, "sin({a})"),
             Op::Cos(a) => write!(f, "cos({a})"),
             Op::Sqrt(a) => write!(f, "sqrt({a})"),
+            Op::Pack(a, b, c, d) => write!(f, "[{a}, {b}, {c}, {d}]"),
+            Op::Lane(a, k) => write!(f, "{a}[{k}]"),
         }
     }
 }
@@ -258,6 +273,8 @@ pub struct Graph {
 #[derive(Debug)]
 struct Nodes {
     ops: Vec<Op>,
+    /// Whether each node is packed ([`Op::Pack`], or arithmetic on a packed operand).
+    packed: Vec<bool>,
     index: HashMap<Op, Node, BuildHasherDefault<OpHasher>>,
     /// The most operations (not counting leaves) the graph takes ([`NODE_BUDGET`]).
     budget: usize,
@@ -270,6 +287,7 @@ impl Default for Graph {
         Graph {
             inner: RefCell::new(Nodes {
                 ops: Vec::new(),
+                packed: Vec::new(),
                 index: HashMap::default(),
                 budget: BUDGET.with(std::cell::Cell::get),
                 exhausted: false,
@@ -362,6 +380,18 @@ impl Graph {
         self.inner.borrow().ops.clone()
     }
 
+    /// Whether `node` is a packed value (four lanes).
+    #[must_use]
+    pub fn is_packed(&self, node: Node) -> bool {
+        self.inner.borrow().packed[node.index()]
+    }
+
+    /// Whether each node, in id order, is packed.
+    #[must_use]
+    pub fn packed_flags(&self) -> Vec<bool> {
+        self.inner.borrow().packed.clone()
+    }
+
     /// The value of `node` if it is a constant.
     #[must_use]
     pub fn constant_value(&self, node: Node) -> Option<f64> {
@@ -392,6 +422,12 @@ impl Graph {
         );
         let id = u32::try_from(nodes.ops.len()).expect("more than 2^32 nodes in a graph");
         let node = Node(id);
+        let packed = match op {
+            Op::Pack(..) => true,
+            Op::Lane(..) => false,
+            _ => op.children().any(|c| nodes.packed[c.index()]),
+        };
+        nodes.packed.push(packed);
         nodes.ops.push(op);
         nodes.index.insert(op, node);
         node

@@ -57,7 +57,7 @@ impl Graph {
     /// `x` if `node` is `−x`; `c` if `node` is a negative constant `−c`; else `None`.
     ///
     /// This is the single notion of "a negated value" that the negation rules use.
-    fn negated(&self, node: Node) -> Option<Node> {
+    pub(super) fn negated(&self, node: Node) -> Option<Node> {
         match self.op(node) {
             Op::Neg(x) => Some(x),
             Op::Const(c) if c.value() < 0.0 => Some(self.constant(-c.value())),
