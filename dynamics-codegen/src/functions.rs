@@ -471,21 +471,29 @@ fn bias(model: &Model) -> Expanded {
     }
 }
 
-/// M(q) over the base inertial parameters that make it cheapest.
+/// M(q) over the base inertial parameters that make it cheapest; `packed` by
+/// [`crba::mass_matrix_packed`], else column by column.
 fn regrouped_mass_matrix(
     g: &Graph,
     model: &Model,
     transforms: &[JointTransform],
     inertias: &[BodyInertia],
+    packed: bool,
 ) -> Vec<Vec<Node>> {
-    let build = |i: &[BodyInertia]| crba::mass_matrix(g, model, transforms, i);
+    let build = |i: &[BodyInertia]| {
+        if packed {
+            crba::mass_matrix_packed(g, model, transforms, i)
+        } else {
+            crba::mass_matrix(g, model, transforms, i)
+        }
+    };
     let regrouped = base_parameters::regroup(g, model, transforms, inertias, |i| build(i).concat());
     build(&regrouped)
 }
 
 fn mass_matrix(model: &Model) -> Expanded {
     let (g, t, i) = fresh_graph(model);
-    let m = regrouped_mass_matrix(&g, model, &t, &i);
+    let m = regrouped_mass_matrix(&g, model, &t, &i, true);
     Expanded {
         graph: g,
         output: Output::Matrix(m),
@@ -558,7 +566,7 @@ fn forward_dynamics_on(
             };
             let bias = joint_forces(g, model, t, i, &sweep_inputs);
             let rhs: Vec<Node> = tau.iter().zip(&bias).map(|(&t, &b)| g.sub(t, b)).collect();
-            let m = regrouped_mass_matrix(g, model, t, i);
+            let m = regrouped_mass_matrix(g, model, t, i, false);
             ldlt::solve(g, model, m, rhs)
         }
     }

@@ -127,21 +127,50 @@ fn pack_single_columns(g: &Graph, wrenches: Vec<ColumnWrench>) -> Vec<ColumnWren
     out
 }
 
-/// M(q), full and symmetric, with armature on the diagonal.
-///
-/// Isomorphic limbs are computed side by side ([`Slots`]): their composite inertias and
-/// columns in the lanes of packed values. Above them, and wherever two or more single
-/// columns meet, the columns travel packed four to a value, each step's transform
-/// applied to the four at once.
+/// M(q), full and symmetric, with armature on the diagonal, column by column: each
+/// column's wrench carried up on its own, all values scalar.
 pub fn mass_matrix(
     g: &Graph,
     model: &Model,
     transforms: &[JointTransform],
     inertias: &[BodyInertia],
 ) -> Vec<Vec<Node>> {
-    let slots = Slots::of(model);
+    by_slots(
+        g,
+        model,
+        &Slots::each_body(model),
+        transforms,
+        inertias,
+        false,
+    )
+}
+
+/// [`mass_matrix`] packed: isomorphic limbs computed side by side ([`Slots`]), their
+/// composite inertias and columns in the lanes of packed values; above them, and wherever
+/// two or more single columns meet, the columns travel packed four to a value, each
+/// ancestor step's transform applied to the four at once. For the mass matrix returned on
+/// its own: inside forward dynamics (M then LDLᵀ) the packed M made go2's 14 % slower
+/// (283 → 323 ns, per state, 20 states), where go2's M alone takes 0.70 of its time.
+pub fn mass_matrix_packed(
+    g: &Graph,
+    model: &Model,
+    transforms: &[JointTransform],
+    inertias: &[BodyInertia],
+) -> Vec<Vec<Node>> {
+    by_slots(g, model, &Slots::of(model), transforms, inertias, true)
+}
+
+/// M(q) over `slots`, single columns packed where they meet when `pack_columns`.
+fn by_slots(
+    g: &Graph,
+    model: &Model,
+    slots: &Slots,
+    transforms: &[JointTransform],
+    inertias: &[BodyInertia],
+    pack_columns: bool,
+) -> Vec<Vec<Node>> {
     let transforms = slots.transforms(g, transforms);
-    let composite = slot_composite_inertias(g, &slots, &transforms, &slots.inertias(g, inertias));
+    let composite = slot_composite_inertias(g, slots, &transforms, &slots.inertias(g, inertias));
     let mut m = vec![vec![g.zero(); model.nv]; model.nv];
     let mut arriving: Vec<Vec<ColumnWrench>> = slots.slots.iter().map(|_| Vec::new()).collect();
     for s in (0..slots.slots.len()).rev() {
@@ -162,7 +191,7 @@ pub fn mass_matrix(
                 columns,
             });
         }
-        if slot.lanes.len() == 1 && slot.parent != SlotParent::Ground {
+        if pack_columns && slot.lanes.len() == 1 && slot.parent != SlotParent::Ground {
             wrenches = pack_single_columns(g, wrenches);
         }
         for w in &wrenches {

@@ -43,6 +43,21 @@ pub struct Slots {
 }
 
 impl Slots {
+    /// Every body alone, in body order: a sweep over these is the sweep over the bodies.
+    pub fn each_body(model: &Model) -> Slots {
+        let slots = model
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(b, body)| Slot {
+                lanes: vec![b],
+                parent: body.parent.map_or(SlotParent::Ground, SlotParent::Body),
+            })
+            .collect();
+        let of_body = (0..model.bodies.len()).map(|b| (b, 0)).collect();
+        Slots { slots, of_body }
+    }
+
     /// Isomorphic sibling subtrees packed up to four at a time (the first siblings of each
     /// shape in body order), every other body alone.
     pub fn of(model: &Model) -> Slots {

@@ -93,7 +93,7 @@ fn velocity_jacobian_by_coriolis(
     for body in &model.bodies {
         let k = body.joint.idx_v;
         if body.joint.kind == JointKind::Free {
-            let m = regrouped_mass_matrix(g, model, transforms, inertias);
+            let m = regrouped_mass_matrix(g, model, transforms, inertias, false);
             for twist in 0..6 {
                 let column =
                     free_joint_derivatives::velocity_column(g, &body.joint, (&m, &c), v, twist);
@@ -182,7 +182,7 @@ fn fill_free_configuration_columns(
         if body.joint.kind != JointKind::Free || body.parent.is_some() {
             continue;
         }
-        let m = regrouped_mass_matrix(g, model, transforms, inertias);
+        let m = regrouped_mass_matrix(g, model, transforms, inertias, false);
         for k in 0..6 {
             let column = free_joint_derivatives::configuration_column(
                 g,
@@ -415,7 +415,7 @@ fn forward_dynamics_derivatives_by_chain_rule(
     let nv = model.nv;
     let qdd = forward_dynamics_on(g, t, i, model, method);
     let (tau, v) = inverse_dynamics_on(g, model, t, i);
-    let m = regrouped_mass_matrix(g, model, t, i);
+    let m = regrouped_mass_matrix(g, model, t, i, false);
     // ∂τ/∂x at a = q̈, by rows.
     let basis = CoriolisBasis::new();
     let jacobian = |with: With| {
@@ -505,12 +505,13 @@ pub(super) fn mass_matrix_inverse(model: &Model) -> Expanded {
 fn mass_matrix_inverse_candidates(model: &Model) -> Vec<(Graph, Output, &'static str)> {
     let straight = {
         let (g, t, i) = fresh_graph(model);
-        let rows = ldlt::inverse(&g, model, regrouped_mass_matrix(&g, model, &t, &i));
+        let rows = ldlt::inverse(&g, model, regrouped_mass_matrix(&g, model, &t, &i, false));
         (g, Output::Matrix(rows), "")
     };
     let by_loop = {
         let (g, t, i) = fresh_graph(model);
-        let half = ldlt::inverse_halfway(&g, model, regrouped_mass_matrix(&g, model, &t, &i));
+        let half =
+            ldlt::inverse_halfway(&g, model, regrouped_mass_matrix(&g, model, &t, &i, false));
         let solve = TreeSolve {
             parents: half.parents,
             factor: half.factor,
@@ -539,7 +540,7 @@ fn mass_matrix_inverse_candidates(model: &Model) -> Vec<(Graph, Output, &'static
 pub(super) fn momentum_derivatives(model: &Model) -> Expanded {
     let (g, t, i) = fresh_graph(model);
     let v = inputs(&g, Array::V, model.nv);
-    let mass = regrouped_mass_matrix(&g, model, &t, &i);
+    let mass = regrouped_mass_matrix(&g, model, &t, &i, false);
     let momentum: Vec<Node> = mass
         .iter()
         .map(|row| {
@@ -746,7 +747,7 @@ mod tests {
             .try_into()
             .expect("two ways");
         let (g, t, i) = fresh_graph(&model);
-        let m = regrouped_mass_matrix(&g, &model, &t, &i);
+        let m = regrouped_mass_matrix(&g, &model, &t, &i, false);
         let m = g.eval(input, &m.concat());
         assert_eq!(by_loop.len(), 18 * 18);
         for r in 0..18 {
