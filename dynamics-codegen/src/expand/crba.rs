@@ -40,17 +40,7 @@ pub fn composite_inertias(
     transforms: &[JointTransform],
     inertias: &[BodyInertia],
 ) -> Vec<BodyInertia> {
-    let mut composite = inertias.to_vec();
-    for i in (0..model.bodies.len()).rev() {
-        if let Some(p) = model.bodies[i].parent {
-            let moved = to_parent(g, &transforms[i], &composite[i]);
-            let acc = &mut composite[p];
-            acc.mass = g.add(acc.mass, moved.mass);
-            acc.first_moment = acc.first_moment.add(g, moved.first_moment);
-            acc.inertia_about_origin = acc.inertia_about_origin.add(g, moved.inertia_about_origin);
-        }
-    }
-    composite
+    slot_composite_inertias(g, &Slots::each_body(model), transforms, inertias)
 }
 
 /// A body's inertia expressed in its parent's frame, about the parent's origin.
@@ -237,8 +227,8 @@ fn by_slots(
     m
 }
 
-/// [`composite_inertias`] by slots: each slot's lanes' composite inertias, packed as the
-/// slot is; a scalar parent takes each lane's in turn.
+/// Composite inertias by slots (the children's before their parents'): each slot's lanes'
+/// composite inertias, packed as the slot is; a scalar parent takes each lane's in turn.
 fn slot_composite_inertias(
     g: &Graph,
     slots: &Slots,
