@@ -229,7 +229,7 @@ fn by_slots(
 
 /// Composite inertias by slots (the children's before their parents'): each slot's lanes'
 /// composite inertias, packed as the slot is; a scalar parent takes each lane's in turn.
-fn slot_composite_inertias(
+pub(crate) fn slot_composite_inertias(
     g: &Graph,
     slots: &Slots,
     transforms: &[JointTransform],

@@ -52,6 +52,7 @@
 use super::crba;
 use super::geometry::{BodyInertia, JointTransform};
 use super::rnea::{self, SweepInputs};
+use super::slots::{SlotParent, Slots};
 use super::spatial::{add6, inertia_times, motion_cross, motion_subspace, scale6, Six};
 use crate::model::{JointKind, Model};
 use crate::sym::{Graph, Mat3, Node, Vec3};
@@ -355,30 +356,71 @@ pub fn world_jacobian_rates(
 }
 
 /// A_G, the centroidal momentum matrix: 6 rows [linear; angular about the centre of mass]
-/// of nv entries, world axes.
+/// of nv entries, world axes. Computed over [`Slots`]: isomorphic limbs side by side in the
+/// lanes of packed values (their poses, composite inertias and columns), as the packed mass
+/// matrix is ([`crba::mass_matrix_packed`]).
 pub fn centroidal_momentum_matrix(
     g: &Graph,
     model: &Model,
     transforms: &[JointTransform],
     inertias: &[BodyInertia],
 ) -> Vec<Vec<Node>> {
-    let poses = body_poses(g, model, transforms);
-    let composite = crba::composite_inertias(g, model, transforms, inertias);
-    let centre = center_of_mass(g, model, transforms, inertias);
+    let slots = Slots::of(model);
+    let slot_transforms = slots.transforms(g, transforms);
+    let composite =
+        crba::slot_composite_inertias(g, &slots, &slot_transforms, &slots.inertias(g, inertias));
+    // Each slot's pose in the world: its parent's (packed the same way, or one body's,
+    // broadcast) composed with its own transform.
+    let mut poses: Vec<Pose> = Vec::with_capacity(slots.slots.len());
+    for (s, slot) in slots.slots.iter().enumerate() {
+        let t = &slot_transforms[s];
+        let parent = match slot.parent {
+            SlotParent::Ground => None,
+            SlotParent::Packed(p) => Some(poses[p]),
+            SlotParent::Body(b) => Some(poses[slots.of_body[b].0]),
+        };
+        poses.push(match parent {
+            None => Pose {
+                rotation_in_world: t.rotation_to_parent,
+                origin_in_world: t.origin_in_parent,
+            },
+            Some(parent) => Pose {
+                rotation_in_world: parent.rotation_in_world.mul(g, t.rotation_to_parent),
+                origin_in_world: parent
+                    .origin_in_world
+                    .add(g, parent.rotation_in_world.mul_vec(g, t.origin_in_parent)),
+            },
+        });
+    }
+    // c from the roots' composite first moments: m p + R h of each root's subtree.
+    let mut moment = Vec3::zero(g);
+    for (s, slot) in slots.slots.iter().enumerate() {
+        if slot.parent == SlotParent::Ground {
+            let root = first_moment_in_world(g, &poses[s], &composite[s]);
+            for lane in 0..slot.lanes.len() {
+                moment = moment.add(g, Vec3(root.0.map(|x| g.lane(x, lane))));
+            }
+        }
+    }
+    let centre = moment.scale(g, reciprocal_total_mass(g, inertias));
     let mut columns: Vec<(Vec3, Vec3)> = vec![(Vec3::zero(g), Vec3::zero(g)); model.nv];
-    for (j, body) in model.bodies.iter().enumerate() {
-        let pose = &poses[j];
+    for (s, slot) in slots.slots.iter().enumerate() {
+        let pose = &poses[s];
         let lever = pose.origin_in_world.sub(g, centre);
-        for (k, s) in motion_subspace(g, &body.joint.kind).into_iter().enumerate() {
-            // The subtree's momentum [F; M_P] in body j's frame at P_j, turned into the world
+        let kind = &model.bodies[slot.lanes[0]].joint.kind;
+        for (k, sv) in motion_subspace(g, kind).into_iter().enumerate() {
+            // The subtree's momentum [F; M_P] in the body's frame at P, turned into the world
             // and taken about c.
-            let (force, moment) = inertia_times(g, &composite[j], s);
+            let (force, moment) = inertia_times(g, &composite[s], sv);
             let linear = pose.rotation_in_world.mul_vec(g, force);
             let angular = pose
                 .rotation_in_world
                 .mul_vec(g, moment)
                 .add(g, lever.cross(g, linear));
-            columns[body.joint.idx_v + k] = (linear, angular);
+            for (lane, &b) in slot.lanes.iter().enumerate() {
+                let l = |v: Vec3| Vec3(v.0.map(|x| g.lane(x, lane)));
+                columns[model.bodies[b].joint.idx_v + k] = (l(linear), l(angular));
+            }
         }
     }
     (0..6)
