@@ -68,25 +68,33 @@ pub struct Pose {
 
 /// The pose of every body in the world, parents first.
 pub fn body_poses(g: &Graph, model: &Model, transforms: &[JointTransform]) -> Vec<Pose> {
-    let mut poses: Vec<Pose> = Vec::with_capacity(model.bodies.len());
-    for (i, body) in model.bodies.iter().enumerate() {
-        let t = &transforms[i];
-        let pose = match body.parent {
+    slot_poses(g, &Slots::each_body(model), transforms)
+}
+
+/// Each slot's pose in the world, parents first: its parent's (packed the same way, or one
+/// body's, broadcast to the lanes) composed with the slot's own transform
+/// (`slot_transforms`, one a slot).
+fn slot_poses(g: &Graph, slots: &Slots, slot_transforms: &[JointTransform]) -> Vec<Pose> {
+    let mut poses: Vec<Pose> = Vec::with_capacity(slots.slots.len());
+    for (s, slot) in slots.slots.iter().enumerate() {
+        let t = &slot_transforms[s];
+        let parent = match slot.parent {
+            SlotParent::Ground => None,
+            SlotParent::Packed(p) => Some(poses[p]),
+            SlotParent::Body(b) => Some(poses[slots.of_body[b].0]),
+        };
+        poses.push(match parent {
             None => Pose {
                 rotation_in_world: t.rotation_to_parent,
                 origin_in_world: t.origin_in_parent,
             },
-            Some(p) => {
-                let parent = poses[p];
-                Pose {
-                    rotation_in_world: parent.rotation_in_world.mul(g, t.rotation_to_parent),
-                    origin_in_world: parent
-                        .origin_in_world
-                        .add(g, parent.rotation_in_world.mul_vec(g, t.origin_in_parent)),
-                }
-            }
-        };
-        poses.push(pose);
+            Some(parent) => Pose {
+                rotation_in_world: parent.rotation_in_world.mul(g, t.rotation_to_parent),
+                origin_in_world: parent
+                    .origin_in_world
+                    .add(g, parent.rotation_in_world.mul_vec(g, t.origin_in_parent)),
+            },
+        });
     }
     poses
 }
@@ -369,29 +377,7 @@ pub fn centroidal_momentum_matrix(
     let slot_transforms = slots.transforms(g, transforms);
     let composite =
         crba::slot_composite_inertias(g, &slots, &slot_transforms, &slots.inertias(g, inertias));
-    // Each slot's pose in the world: its parent's (packed the same way, or one body's,
-    // broadcast) composed with its own transform.
-    let mut poses: Vec<Pose> = Vec::with_capacity(slots.slots.len());
-    for (s, slot) in slots.slots.iter().enumerate() {
-        let t = &slot_transforms[s];
-        let parent = match slot.parent {
-            SlotParent::Ground => None,
-            SlotParent::Packed(p) => Some(poses[p]),
-            SlotParent::Body(b) => Some(poses[slots.of_body[b].0]),
-        };
-        poses.push(match parent {
-            None => Pose {
-                rotation_in_world: t.rotation_to_parent,
-                origin_in_world: t.origin_in_parent,
-            },
-            Some(parent) => Pose {
-                rotation_in_world: parent.rotation_in_world.mul(g, t.rotation_to_parent),
-                origin_in_world: parent
-                    .origin_in_world
-                    .add(g, parent.rotation_in_world.mul_vec(g, t.origin_in_parent)),
-            },
-        });
-    }
+    let poses = slot_poses(g, &slots, &slot_transforms);
     // c from the roots' composite first moments: m p + R h of each root's subtree.
     let mut moment = Vec3::zero(g);
     for (s, slot) in slots.slots.iter().enumerate() {
