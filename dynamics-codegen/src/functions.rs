@@ -507,7 +507,7 @@ fn coriolis_matrix(model: &Model) -> Expanded {
     let v = inputs(&g, Array::V, model.nv);
     // C is the Christoffel-consistent factorization, a function of M(q): base parameters
     // serve.
-    let build = |i: &[BodyInertia]| coriolis::coriolis_matrix(&g, model, &t, i, &v);
+    let build = |i: &[BodyInertia]| coriolis::coriolis_matrix_packed(&g, model, &t, i, &v);
     let c = build(&base_parameters::regroup(&g, model, &t, &i, |i| {
         build(i).concat()
     }));

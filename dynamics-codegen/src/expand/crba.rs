@@ -28,20 +28,11 @@
 //! 2,255 so, nearly all on four lanes.
 
 use super::geometry::{self, BodyInertia, JointTransform};
-use super::slots::{SlotParent, Slots};
+use super::slot_columns::{pack_single_columns, CarriedColumns};
+use super::slots::{padded, SlotParent, Slots};
 use super::spatial::{congruence, inertia_times, motion_subspace, symmetric};
 use crate::model::Model;
 use crate::sym::{Graph, Mat3, Node, Vec3};
-
-/// Composite inertias of every body's subtree, about its origin, in its frame.
-pub fn composite_inertias(
-    g: &Graph,
-    model: &Model,
-    transforms: &[JointTransform],
-    inertias: &[BodyInertia],
-) -> Vec<BodyInertia> {
-    slot_composite_inertias(g, &Slots::each_body(model), transforms, inertias)
-}
 
 /// A body's inertia expressed in its parent's frame, about the parent's origin.
 fn to_parent(g: &Graph, t: &JointTransform, inertia: &BodyInertia) -> BodyInertia {
@@ -67,55 +58,6 @@ fn to_parent(g: &Graph, t: &JointTransform, inertia: &BodyInertia) -> BodyInerti
 /// sᵀ f for a motion column s = [v; ω] and a wrench f = [F; M].
 fn project(g: &Graph, column: &(Vec3, Vec3), force: Vec3, moment: Vec3) -> Node {
     g.add(column.0.dot(g, force), column.1.dot(g, moment))
-}
-
-/// A wrench f = I^c_j s_j on its way up the tree, in the frame of the slot it has reached,
-/// and the columns of M it makes: lane k is column `columns[k]`.
-struct ColumnWrench {
-    force: Vec3,
-    moment: Vec3,
-    columns: Vec<usize>,
-}
-
-impl ColumnWrench {
-    fn is_scalar(&self, g: &Graph) -> bool {
-        self.columns.len() == 1
-            && !self
-                .force
-                .0
-                .iter()
-                .chain(&self.moment.0)
-                .any(|&n| g.is_packed(n))
-    }
-}
-
-/// The fewest single columns at a body that travel on packed: two or more share every
-/// step above it at the cost of one.
-const PACK_COLUMNS_FROM: usize = 2;
-
-/// Single columns' wrenches packed four at a time, in column order (so that a row's
-/// entries of one pack are adjacent in M); the others as they are.
-fn pack_single_columns(g: &Graph, wrenches: Vec<ColumnWrench>) -> Vec<ColumnWrench> {
-    let (mut singles, mut out): (Vec<_>, Vec<_>) =
-        wrenches.into_iter().partition(|w| w.is_scalar(g));
-    if singles.len() < PACK_COLUMNS_FROM {
-        out.extend(singles);
-        return out;
-    }
-    singles.sort_by_key(|w| w.columns[0]);
-    for chunk in singles.chunks(4) {
-        let lanes = |value: &dyn Fn(&ColumnWrench) -> Node| {
-            g.pack(std::array::from_fn(|k| {
-                value(&chunk[k.min(chunk.len() - 1)])
-            }))
-        };
-        out.push(ColumnWrench {
-            force: Vec3(std::array::from_fn(|i| lanes(&|w| w.force.0[i]))),
-            moment: Vec3(std::array::from_fn(|i| lanes(&|w| w.moment.0[i]))),
-            columns: chunk.iter().map(|w| w.columns[0]).collect(),
-        });
-    }
-    out
 }
 
 /// M(q), full and symmetric, with armature on the diagonal, column by column: each
@@ -163,34 +105,33 @@ fn by_slots(
     let transforms = slots.transforms(g, transforms);
     let composite = slot_composite_inertias(g, slots, &transforms, &slots.inertias(g, inertias));
     let mut m = vec![vec![g.zero(); model.nv]; model.nv];
-    let mut arriving: Vec<Vec<ColumnWrench>> = slots.slots.iter().map(|_| Vec::new()).collect();
+    let mut arriving: Vec<Vec<CarriedColumns>> = slots.slots.iter().map(|_| Vec::new()).collect();
     for s in (0..slots.slots.len()).rev() {
         let slot = &slots.slots[s];
         let joint = &model.bodies[slot.lanes[0]].joint;
         let subspace = motion_subspace(g, &joint.kind);
-        let mut wrenches = std::mem::take(&mut arriving[s]);
+        let mut carried = std::mem::take(&mut arriving[s]);
         for (col, s_col) in subspace.iter().enumerate() {
-            let (force, moment) = inertia_times(g, &composite[s], *s_col);
             let columns = slot
                 .lanes
                 .iter()
                 .map(|&b| model.bodies[b].joint.idx_v + col)
                 .collect();
-            wrenches.push(ColumnWrench {
-                force,
-                moment,
+            carried.push(CarriedColumns {
+                wrenches: vec![inertia_times(g, &composite[s], *s_col)],
                 columns,
             });
         }
         if pack_columns && slot.lanes.len() == 1 && slot.parent != SlotParent::Ground {
-            wrenches = pack_single_columns(g, wrenches);
+            carried = pack_single_columns(g, carried);
         }
-        for w in &wrenches {
+        for c in &carried {
+            let (force, moment) = c.wrenches[0];
             for (row_in_joint, s_row) in subspace.iter().enumerate() {
-                let entry = project(g, s_row, w.force, w.moment);
-                for (k, &column) in w.columns.iter().enumerate() {
+                let entry = project(g, s_row, force, moment);
+                for (k, &column) in c.columns.iter().enumerate() {
                     // In a packed slot lane k is both the row's body and the column's.
-                    let row_joint = &model.bodies[slot.lanes[k.min(slot.lanes.len() - 1)]].joint;
+                    let row_joint = &model.bodies[*padded(&slot.lanes, k)].joint;
                     let row = row_joint.idx_v + row_in_joint;
                     let value = g.lane(entry, k);
                     m[row][column] = value;
@@ -200,20 +141,9 @@ fn by_slots(
                 }
             }
         }
-        let up = match slot.parent {
-            SlotParent::Ground => None,
-            SlotParent::Packed(p) => Some(p),
-            SlotParent::Body(b) => Some(slots.of_body[b].0),
-        };
-        if let Some(p) = up {
-            for w in wrenches {
-                let (force, moment) =
-                    geometry::wrench_to_parent(g, &transforms[s], w.force, w.moment);
-                arriving[p].push(ColumnWrench {
-                    force,
-                    moment,
-                    columns: w.columns,
-                });
+        if let Some(p) = slots.parent_slot(s) {
+            for c in carried {
+                arriving[p].push(c.moved_to_parent(g, &transforms[s]));
             }
         }
         for &b in &slot.lanes {
@@ -237,20 +167,11 @@ pub(crate) fn slot_composite_inertias(
 ) -> Vec<BodyInertia> {
     let mut composite = inertias.to_vec();
     for s in (0..slots.slots.len()).rev() {
-        let slot = &slots.slots[s];
-        let moved = match slot.parent {
-            SlotParent::Ground => continue,
-            _ => to_parent(g, &transforms[s], &composite[s]),
+        let Some(p) = slots.parent_slot(s) else {
+            continue;
         };
-        let (p, lanes) = match slot.parent {
-            SlotParent::Packed(p) => (p, vec![None]),
-            SlotParent::Body(b) => (
-                slots.of_body[b].0,
-                (0..slot.lanes.len()).map(Some).collect(),
-            ),
-            SlotParent::Ground => continue,
-        };
-        for k in lanes {
+        let moved = to_parent(g, &transforms[s], &composite[s]);
+        for k in slots.lanes_into_parent(s) {
             let lane = |x: Node| k.map_or(x, |k| g.lane(x, k));
             let acc = &mut composite[p];
             acc.mass = g.add(acc.mass, lane(moved.mass));

@@ -39,7 +39,7 @@
 //! The centroidal momentum matrix A_G (6 × nv, rows [linear; angular], h_G = A_G q̇: the
 //! linear momentum and the angular momentum about the centre of mass c, world axes). The
 //! subtree that joint j carries, with its composite inertia (m, h, I_P) about P_j in body
-//! j's frame ([`crba::composite_inertias`]), moving along the joint's motion subspace s at
+//! j's frame ([`crba::slot_composite_inertias`]), moving along the joint's motion subspace s at
 //! unit rate, has the momentum [F; M_P] = I^c_j s in that frame (F = m v + ω × h,
 //! M_P = h × v + I_P ω); A_G's column is that momentum in the world about c:
 //!
@@ -76,14 +76,8 @@ pub fn body_poses(g: &Graph, model: &Model, transforms: &[JointTransform]) -> Ve
 /// (`slot_transforms`, one a slot).
 fn slot_poses(g: &Graph, slots: &Slots, slot_transforms: &[JointTransform]) -> Vec<Pose> {
     let mut poses: Vec<Pose> = Vec::with_capacity(slots.slots.len());
-    for (s, slot) in slots.slots.iter().enumerate() {
-        let t = &slot_transforms[s];
-        let parent = match slot.parent {
-            SlotParent::Ground => None,
-            SlotParent::Packed(p) => Some(poses[p]),
-            SlotParent::Body(b) => Some(poses[slots.of_body[b].0]),
-        };
-        poses.push(match parent {
+    for (s, t) in slot_transforms.iter().enumerate() {
+        poses.push(match slots.parent_slot(s).map(|p| poses[p]) {
             None => Pose {
                 rotation_in_world: t.rotation_to_parent,
                 origin_in_world: t.origin_in_parent,

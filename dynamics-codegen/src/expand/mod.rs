@@ -12,8 +12,9 @@
 //! | [`spatial`] | six-vectors, the symmetric 3×3 helpers, a joint's motion subspace |
 //! | [`rnea`] | the Newton–Euler sweeps: motions, body equations about P, joint wrenches and τ |
 //! | [`slots`] | isomorphic sibling limbs grouped side by side, one per lane of packed values |
+//! | [`slot_columns`] | a tree matrix's columns carried up by slots, packed four to a value |
 //! | [`crba`] | composite inertias and the mass matrix (by slots, packed) |
-//! | [`coriolis`] | the Christoffel-consistent Coriolis matrix |
+//! | [`coriolis`] | the Christoffel-consistent Coriolis matrix (by slots, packed) |
 //! | [`aba`] | the articulated-body algorithm |
 //! | [`ldlt`] | the tree-sparse LDLᵀ solve of M q̈ = τ − bias |
 //! | [`energy`] | kinetic and potential energy |
@@ -38,6 +39,7 @@ pub(crate) mod ldlt;
 pub(crate) mod qr;
 pub(crate) mod rnea;
 pub(crate) mod rnea_derivatives;
+pub(crate) mod slot_columns;
 pub(crate) mod slots;
 pub(crate) mod spatial;
 pub(crate) mod statics;

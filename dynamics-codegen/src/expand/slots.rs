@@ -134,6 +134,32 @@ impl Slots {
         Slots { slots, of_body }
     }
 
+    /// The slot holding slot `s`'s parents, none for roots.
+    pub fn parent_slot(&self, s: usize) -> Option<usize> {
+        match self.slots[s].parent {
+            SlotParent::Ground => None,
+            SlotParent::Packed(p) => Some(p),
+            SlotParent::Body(b) => Some(self.of_body[b].0),
+        }
+    }
+
+    /// How slot `s`'s values join its parent slot's sums: `[None]`, all lanes at once, lane
+    /// for lane, into a packed parent; `Some(k)` for each lane k in turn into a scalar one;
+    /// nothing for roots.
+    pub fn lanes_into_parent(&self, s: usize) -> Vec<Option<usize>> {
+        match self.slots[s].parent {
+            SlotParent::Packed(_) => vec![None],
+            SlotParent::Body(_) => (0..self.slots[s].lanes.len()).map(Some).collect(),
+            SlotParent::Ground => Vec::new(),
+        }
+    }
+
+    /// Slot `s`'s lanes' `value`s (of each lane's body) zipped.
+    pub fn zip_lanes(&self, g: &Graph, s: usize, value: impl Fn(usize) -> Node) -> Node {
+        let lanes = &self.slots[s].lanes;
+        g.zip(std::array::from_fn(|k| value(*padded(lanes, k))))
+    }
+
     /// Each slot's joint transform, its lanes' zipped.
     pub fn transforms(&self, g: &Graph, per_body: &[JointTransform]) -> Vec<JointTransform> {
         self.slots
@@ -166,11 +192,15 @@ impl Slots {
     }
 }
 
-/// The lanes' `value`s zipped; a slot of fewer than four repeats its last lane.
+/// Lane k of a group of one to four: a group of fewer than four repeats its last in the
+/// lanes beyond it.
+pub fn padded<T>(group: &[T], k: usize) -> &T {
+    &group[k.min(group.len() - 1)]
+}
+
+/// The lanes' `value`s zipped.
 fn zip<T>(g: &Graph, lanes: &[&T], value: impl Fn(&T) -> Node) -> Node {
-    g.zip(std::array::from_fn(|k| {
-        value(lanes[k.min(lanes.len() - 1)])
-    }))
+    g.zip(std::array::from_fn(|k| value(*padded(lanes, k))))
 }
 
 fn zip_vec3<T>(g: &Graph, lanes: &[&T], value: impl Fn(&T) -> Vec3) -> Vec3 {
