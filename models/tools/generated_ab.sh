@@ -64,7 +64,10 @@ for side in a b; do
     rev=${!side}
     echo "==> $side = $(git -C "$root" rev-parse --short "$rev"): building its compiler" >&2
     mkdir -p "$work/$side"
-    git -C "$root" archive "$rev" | tar -x -C "$work/$side"
+    # Extracted with fresh modification times (-m): `git archive` stamps files with the
+    # commit's time, which cargo would take as older than a later build of another commit
+    # in the same target directory, and reuse that compiler.
+    git -C "$root" archive "$rev" | tar -x -m -C "$work/$side"
     CARGO_TARGET_DIR="$target/$side" cargo build --quiet --release \
         --manifest-path "$work/$side/Cargo.toml" -p dynamics-codegen
     if [ -n "$public" ]; then

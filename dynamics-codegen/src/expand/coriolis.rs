@@ -34,12 +34,12 @@
 //! derivatives are built on it); [`coriolis_matrix_packed`] (the generated
 //! `coriolis_matrix`) isomorphic limbs side by side in the lanes of packed values, and
 //! columns carried four to a value ([`super::slot_columns`]). The humanoid g1's C (35 dof):
-//! 15,768 multiplications and additions column by column, 8,410 so, 7,589 of them on four
+//! 15,768 multiplications and additions column by column, 7,809 so, 7,024 of them on four
 //! lanes.
 
 use super::crba::slot_composite_inertias;
 use super::geometry::{self, BodyInertia, JointTransform};
-use super::slot_columns::{pack_single_columns, CarriedColumns};
+use super::slot_columns::{pack_columns, CarriedColumns};
 use super::slots::{padded, Slots};
 use super::spatial::{add6, dot6, force_cross, inertia_times, motion_cross, sub6, Six};
 use super::spatial::{motion_subspace, symmetric};
@@ -219,9 +219,9 @@ pub fn coriolis_matrix(
 }
 
 /// [`coriolis_matrix`] packed: isomorphic limbs side by side ([`Slots`]), their twists,
-/// composite terms and columns in the lanes of packed values; above them, and wherever two
-/// or more single columns meet, the columns' three wrenches travel packed four to a value,
-/// as the packed mass matrix's do ([`super::crba::mass_matrix_packed`]).
+/// composite terms and columns in the lanes of packed values; above them the columns'
+/// three wrenches travel packed four to a value wherever partly filled ones meet, as the
+/// packed mass matrix's do ([`super::crba::mass_matrix_packed`]).
 pub fn coriolis_matrix_packed(
     g: &Graph,
     model: &Model,
@@ -242,8 +242,8 @@ pub fn coriolis_matrix_packed(
     )
 }
 
-/// C over `slots` (the slots' transforms and inertias), single columns packed where they
-/// meet when `pack_columns`. Column j carries the wrenches f1 = I^C_j ṡ_j + B^C_j s_j,
+/// C over `slots` (the slots' transforms and inertias), partly filled packs of columns
+/// packed again where they meet when `repack`. Column j carries the wrenches f1 = I^C_j ṡ_j + B^C_j s_j,
 /// f2 = I^C_j s_j and f3 = B^C_jᵀ s_j up the tree: C_ij = s_iᵀ f1 and
 /// C_ji = f2ᵀ ṡ_i + f3ᵀ s_i at each ancestor i.
 fn by_slots(
@@ -252,7 +252,7 @@ fn by_slots(
     slots: &Slots,
     (transforms, inertias): (&[JointTransform], &[BodyInertia]),
     velocity: &[Node],
-    pack_columns: bool,
+    repack: bool,
 ) -> Vec<Vec<Node>> {
     let terms = slot_composite_terms(g, model, slots, transforms, inertias, velocity);
     let mut c = vec![vec![g.zero(); model.nv]; model.nv];
@@ -296,8 +296,8 @@ fn by_slots(
             });
         }
         if let Some(p) = slots.parent_slot(s) {
-            if pack_columns && slot.lanes.len() == 1 {
-                carried = pack_single_columns(g, carried);
+            if repack && slot.lanes.len() == 1 {
+                carried = pack_columns(g, carried);
             }
             for column in carried {
                 arriving[p].push(column.moved_to_parent(g, &transforms[s]));
@@ -346,8 +346,8 @@ mod tests {
         crate::model::lower(&mechanism).expect("valid")
     }
 
-    /// The packed C (limbs in pairs of lanes, the waist's single columns packed where they
-    /// meet) is the column-by-column C entry for entry, and most of its operations are on
+    /// The packed C (limbs in pairs of lanes, the waist's single columns and the arms'
+    /// pairs packed again where they meet) is the column-by-column C entry for entry, and most of its operations are on
     /// four lanes.
     #[test]
     fn the_packed_coriolis_matrix_is_the_scalar_one() {
@@ -357,7 +357,11 @@ mod tests {
             .iter()
             .map(|s| s.lanes.len())
             .collect();
-        assert_eq!(lanes, [1, 2, 2, 1, 1, 2, 2], "pelvis, legs, waist, chest, arms");
+        assert_eq!(
+            lanes,
+            [1, 2, 2, 1, 1, 2, 2],
+            "pelvis, legs, waist, chest, arms"
+        );
         let (g, t, i) = fresh_graph(&model);
         let v = inputs(&g, Array::V, model.nv);
         let scalar = coriolis_matrix(&g, &model, &t, &i, &v).concat();
@@ -365,10 +369,14 @@ mod tests {
         let count = g.op_count(&packed);
         assert!(2 * count.packed > count.total(), "{count}");
         assert!(count.total() < g.op_count(&scalar).total(), "{count}");
-        let mut q: Vec<f64> = (0..model.nq).map(|k| (0.61 * k as f64 + 0.2).sin()).collect();
+        let mut q: Vec<f64> = (0..model.nq)
+            .map(|k| (0.61 * k as f64 + 0.2).sin())
+            .collect();
         let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
         q[3..7].iter_mut().for_each(|x| *x /= norm);
-        let rates: Vec<f64> = (0..model.nv).map(|k| (1.3 * k as f64).cos() * 2.0).collect();
+        let rates: Vec<f64> = (0..model.nv)
+            .map(|k| (1.3 * k as f64).cos() * 2.0)
+            .collect();
         let value = |r: crate::sym::InputRef| match r.array {
             Array::Q => q[r.index as usize],
             _ => rates[r.index as usize],
@@ -376,7 +384,10 @@ mod tests {
         let (want, got) = (g.eval(value, &scalar), g.eval(value, &packed));
         for (k, (w, x)) in want.iter().zip(&got).enumerate() {
             let (row, col) = (k / model.nv, k % model.nv);
-            assert!((w - x).abs() < 1e-12, "C[{row}][{col}]: {x} packed, {w} not");
+            assert!(
+                (w - x).abs() < 1e-12,
+                "C[{row}][{col}]: {x} packed, {w} not"
+            );
         }
         assert!(want.iter().filter(|w| w.abs() > 1e-6).count() > model.nv);
     }

@@ -18,17 +18,18 @@
 //! base inertial parameters ([`crate::passes::base_parameters`]).
 //!
 //! Both runs sweep [`Slots`]: [`mass_matrix`] one body to a slot, all values scalar;
-//! [`mass_matrix_packed`] (the generated `mass_matrix`) isomorphic limbs (a humanoid's legs, its arms, a quadruped's four
-//! legs) side by side in the lanes of packed values, so that one operation moves the
-//! composite inertias, or carries the columns, of two to four limbs; above the limbs, and
-//! wherever two or more single columns meet, the columns f travel packed four to a value,
-//! one transform applied to the four. Lane by lane it is the same arithmetic; only the
+//! [`mass_matrix_packed`] (the generated `mass_matrix`) isomorphic limbs (a humanoid's
+//! legs, its arms, a quadruped's four legs) side by side in the lanes of packed values, so
+//! that one operation moves the composite inertias, or carries the columns, of two to four
+//! limbs; above the limbs the columns f travel packed four to a value wherever partly
+//! filled ones meet ([`super::slot_columns::pack_columns`]), one transform applied to the
+//! four. Lane by lane it is the same arithmetic; only the
 //! order in which a parent adds up its children's composite inertias follows the slots.
 //! The humanoid g1's M (35 dof): 4,266 multiplications and additions column by column,
-//! 2,255 so, nearly all on four lanes.
+//! 2,151 so, nearly all on four lanes.
 
 use super::geometry::{self, BodyInertia, JointTransform};
-use super::slot_columns::{pack_single_columns, CarriedColumns};
+use super::slot_columns::{pack_columns, CarriedColumns};
 use super::slots::{padded, SlotParent, Slots};
 use super::spatial::{congruence, inertia_times, motion_subspace, symmetric};
 use crate::model::Model;
@@ -79,9 +80,9 @@ pub fn mass_matrix(
 }
 
 /// [`mass_matrix`] packed: isomorphic limbs computed side by side ([`Slots`]), their
-/// composite inertias and columns in the lanes of packed values; above them, and wherever
-/// two or more single columns meet, the columns travel packed four to a value, each
-/// ancestor step's transform applied to the four at once. For the mass matrix returned on
+/// composite inertias and columns in the lanes of packed values; above them the columns
+/// travel packed four to a value wherever partly filled ones meet, each ancestor step's
+/// transform applied to the four at once. For the mass matrix returned on
 /// its own: inside forward dynamics (M then LDLᵀ) the packed M made go2's 14 % slower
 /// (283 → 323 ns, per state, 20 states), where go2's M alone takes 0.70 of its time.
 pub fn mass_matrix_packed(
@@ -93,14 +94,15 @@ pub fn mass_matrix_packed(
     by_slots(g, model, &Slots::of(model), transforms, inertias, true)
 }
 
-/// M(q) over `slots`, single columns packed where they meet when `pack_columns`.
+/// M(q) over `slots`, partly filled packs of columns packed again where they meet when
+/// `repack`.
 fn by_slots(
     g: &Graph,
     model: &Model,
     slots: &Slots,
     transforms: &[JointTransform],
     inertias: &[BodyInertia],
-    pack_columns: bool,
+    repack: bool,
 ) -> Vec<Vec<Node>> {
     let transforms = slots.transforms(g, transforms);
     let composite = slot_composite_inertias(g, slots, &transforms, &slots.inertias(g, inertias));
@@ -122,8 +124,8 @@ fn by_slots(
                 columns,
             });
         }
-        if pack_columns && slot.lanes.len() == 1 && slot.parent != SlotParent::Ground {
-            carried = pack_single_columns(g, carried);
+        if repack && slot.lanes.len() == 1 && slot.parent != SlotParent::Ground {
+            carried = pack_columns(g, carried);
         }
         for c in &carried {
             let (force, moment) = c.wrenches[0];

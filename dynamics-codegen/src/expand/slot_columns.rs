@@ -8,13 +8,14 @@
 //! (E and r the child's rotation and origin in its parent), where each ancestor's entries of
 //! the column are inner products with its own axes. The mass matrix carries one wrench per
 //! column (I^C_j s_j), the Coriolis matrix three. A carried value is packed: lane k is
-//! column `columns[k]` (a packed slot's columns, lane by lane, or single columns packed four
-//! to a value where they meet), so one operation moves up to four columns' wrenches.
+//! column `columns[k]` (a packed slot's columns, lane by lane, or columns packed four to a
+//! value where partly filled ones meet), so one operation moves up to four columns'
+//! wrenches.
 
 use super::geometry::{self, JointTransform};
 use super::slots::padded;
 use super::spatial::Six;
-use crate::sym::{Graph, Node, Vec3};
+use crate::sym::{Graph, Vec3};
 
 /// The wrenches of up to four columns of a matrix on their way up the tree, in the frame of
 /// the slot they have reached: lane k of each is column `columns[k]`.
@@ -26,16 +27,6 @@ pub(crate) struct CarriedColumns {
 }
 
 impl CarriedColumns {
-    /// Whether this is one column with scalar values.
-    fn is_scalar(&self, g: &Graph) -> bool {
-        self.columns.len() == 1
-            && !self
-                .wrenches
-                .iter()
-                .flat_map(|(f, m)| f.0.iter().chain(&m.0))
-                .any(|&n| g.is_packed(n))
-    }
-
     /// The wrenches moved into the parent's frame across the joint transform `t`.
     pub fn moved_to_parent(self, g: &Graph, t: &JointTransform) -> CarriedColumns {
         CarriedColumns {
@@ -49,45 +40,43 @@ impl CarriedColumns {
     }
 }
 
-/// The fewest single columns at a body that travel on packed: two or more share every
-/// step above it at the cost of one.
-const PACK_COLUMNS_FROM: usize = 2;
-
-/// Single columns' wrenches packed four at a time, in column order (so that a row's entries
-/// of one pack are adjacent in the matrix); the others as they are.
-pub(crate) fn pack_single_columns(g: &Graph, carried: Vec<CarriedColumns>) -> Vec<CarriedColumns> {
-    let (mut singles, mut out): (Vec<_>, Vec<_>) =
-        carried.into_iter().partition(|c| c.is_scalar(g));
-    if singles.len() < PACK_COLUMNS_FROM {
-        out.extend(singles);
+/// The columns that travel on partly filled values (single columns, limbs' columns of
+/// fewer than four lanes) packed again, four to a value in column order (so that a row's
+/// entries of one pack are adjacent in the matrix), where that makes fewer values to carry;
+/// full packs as they are. Two single columns so share every step above at the cost of
+/// one, and a chain's columns fill their packs as they meet: two, three, then four.
+pub(crate) fn pack_columns(g: &Graph, carried: Vec<CarriedColumns>) -> Vec<CarriedColumns> {
+    let (partial, mut out): (Vec<_>, Vec<_>) =
+        carried.into_iter().partition(|c| c.columns.len() < 4);
+    let lanes: usize = partial.iter().map(|c| c.columns.len()).sum();
+    if lanes.div_ceil(4) >= partial.len() {
+        out.extend(partial);
         return out;
     }
-    singles.sort_by_key(|c| c.columns[0]);
-    for chunk in singles.chunks(4) {
-        let lanes = |value: &dyn Fn(&CarriedColumns) -> Node| {
-            g.pack(std::array::from_fn(|k| value(padded(chunk, k))))
-        };
-        let wrenches = (0..chunk[0].wrenches.len())
-            .map(|w| {
-                let part = |linear: bool, i: usize| {
-                    lanes(&|c: &CarriedColumns| {
-                        let (f, m) = c.wrenches[w];
-                        if linear {
-                            f.0[i]
-                        } else {
-                            m.0[i]
-                        }
-                    })
-                };
-                (
-                    Vec3(std::array::from_fn(|i| part(true, i))),
-                    Vec3(std::array::from_fn(|i| part(false, i))),
-                )
+    // One column a lane: its wrenches' lane.
+    let mut columns: Vec<(usize, Vec<Six>)> = partial
+        .iter()
+        .flat_map(|c| {
+            c.columns.iter().enumerate().map(|(k, &column)| {
+                let lane = |v: Vec3| Vec3(v.0.map(|x| g.lane(x, k)));
+                let wrenches = c.wrenches.iter().map(|&(f, m)| (lane(f), lane(m)));
+                (column, wrenches.collect())
             })
+        })
+        .collect();
+    columns.sort_by_key(|&(column, _)| column);
+    for chunk in columns.chunks(4) {
+        let pack = |value: &dyn Fn(&[Six]) -> Vec3| {
+            Vec3(std::array::from_fn(|i| {
+                g.pack(std::array::from_fn(|k| value(&padded(chunk, k).1).0[i]))
+            }))
+        };
+        let wrenches = (0..chunk[0].1.len())
+            .map(|w| (pack(&|c| c[w].0), pack(&|c| c[w].1)))
             .collect();
         out.push(CarriedColumns {
             wrenches,
-            columns: chunk.iter().map(|c| c.columns[0]).collect(),
+            columns: chunk.iter().map(|&(column, _)| column).collect(),
         });
     }
     out
