@@ -23,10 +23,10 @@
 //! that one operation moves the composite inertias, or carries the columns, of two to four
 //! limbs; above the limbs the columns f travel packed four to a value wherever partly
 //! filled ones meet ([`super::slot_columns::pack_columns`]), one transform applied to the
-//! four. Lane by lane it is the same arithmetic; only the
-//! order in which a parent adds up its children's composite inertias follows the slots.
-//! The humanoid g1's M (35 dof): 4,266 multiplications and additions column by column,
-//! 2,151 so, nearly all on four lanes.
+//! four. Lane by lane it is the same arithmetic; only the order in which a parent adds up
+//! its children's composite inertias follows the slots. The humanoid g1's M (35 dof):
+//! 4,266 multiplications and additions column by column, 2,091 so, nearly all on four
+//! lanes.
 
 use super::geometry::{self, BodyInertia, JointTransform};
 use super::slot_columns::{pack_columns, CarriedColumns};
@@ -82,9 +82,9 @@ pub fn mass_matrix(
 /// [`mass_matrix`] packed: isomorphic limbs computed side by side ([`Slots`]), their
 /// composite inertias and columns in the lanes of packed values; above them the columns
 /// travel packed four to a value wherever partly filled ones meet, each ancestor step's
-/// transform applied to the four at once. For the mass matrix returned on
-/// its own: inside forward dynamics (M then LDLᵀ) the packed M made go2's 14 % slower
-/// (283 → 323 ns, per state, 20 states), where go2's M alone takes 0.70 of its time.
+/// transform applied to the four at once. For the mass matrix returned on its own: inside
+/// forward dynamics (M then LDLᵀ) the packed M made go2's 14 % slower (283 → 323 ns, per
+/// state, 20 states), where go2's M alone takes 0.70 of its time.
 pub fn mass_matrix_packed(
     g: &Graph,
     model: &Model,
