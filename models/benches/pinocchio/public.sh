@@ -4,7 +4,7 @@
 # would, timed beside Pinocchio on the same states.
 #
 #   bash models/benches/pinocchio/public.sh [--quick] [--isa] [--robots "go2 xarm7 g1"]
-#                                           [--rotation-tolerance 1e-10]
+#                                           [--rotation-tolerance 1e-10] [--avx512]
 #
 # Steps:
 #   1. `compare.sh --setup-only`: Pinocchio (pin) in ./venv and ./build/timing, as for the
@@ -28,6 +28,9 @@
 # the rotation entries within T of 0 or ±1 as exact (a quarter turn written 1.57079632679
 # leaves 4.9e-12, which the default keeps, as Pinocchio does; the outputs are then checked
 # against Pinocchio's within 1e-10 + 100 T, as the model moves by up to T).
+# --avx512: the robots' crates depend on dynamics-runtime with its `avx512` feature, so on a
+# CPU with AVX-512F/VL the wide copy that runs is the build with 32 vector registers (the
+# table's code kB stays the AVX2 + FMA copy's).
 # Robots: go2 (Unitree quadruped, free base, 18 dof), xarm7 (7-dof arm), g1 (Unitree humanoid,
 # 29 joints, free base, 35 dof); by name also the 18-dof quadrupeds anymal (ANYmal C),
 # solo12, a1 and hyq, and the arm z1 (Unitree Z1: 6 joints and a revolute gripper joint,
@@ -40,6 +43,7 @@ ROBOTS="go2 xarm7 g1"
 QUICK=0
 ISA=0
 TOLERANCE=""
+RUNTIME_FEATURES=""
 ERD_VERSION="${ERD_VERSION:-6.0.0}"
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -47,6 +51,7 @@ while [ $# -gt 0 ]; do
     --isa) ISA=1 ;;
     --robots) ROBOTS="$2"; shift ;;
     --rotation-tolerance) TOLERANCE="$2"; shift ;;
+    --avx512) RUNTIME_FEATURES='"avx512"'; export PUBLIC_AVX512=1 ;;
     -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
     *) echo "public.sh: unknown argument $1 (try --help)" >&2; exit 2 ;;
   esac
@@ -117,7 +122,7 @@ publish = false
 [workspace]
 
 [dependencies]
-dynamics-runtime = { path = "$ROOT/dynamics-runtime" }
+dynamics-runtime = { path = "$ROOT/dynamics-runtime", features = [$RUNTIME_FEATURES] }
 
 [dev-dependencies]
 criterion = { version = "0.7", default-features = false, features = ["cargo_bench_support"] }
@@ -292,6 +297,9 @@ text = [f"Machine: {cpu}, {cores} cores. 1-minute load average when each side st
                     for r, _, _ in robots) + ".",
         f"{header}; {gxx}. Generated code: {rustc}, baseline x86-64, criterion median of flat samples.",
         "QUICK RUN (--quick): short measurements, not for figures." if quick == "1" else "",
+        "Built with dynamics-runtime's `avx512` feature (--avx512): the wide copy that ran is "
+        "the AVX-512F/VL build where the CPU has it; code kB is still the AVX2 + FMA copy's."
+        if os.environ.get("PUBLIC_AVX512") else "",
         f"Every declaration says `rotation_tolerance: {tolerance};` (--rotation-tolerance); "
         f"checked against Pinocchio within 1e-10 + 100 × {tolerance}." if tolerance else "",
         "",
