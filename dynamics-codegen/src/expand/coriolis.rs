@@ -179,7 +179,7 @@ fn slot_composite_terms(
             let (f, m) = momenta[s];
             let moved = geometry::wrench_to_parent(g, &transforms[s], f, m);
             for k in slots.lanes_into_parent(s) {
-                let lane = |x: Vec3| Vec3(x.0.map(|x| k.map_or(x, |k| g.lane(x, k))));
+                let lane = |x: Vec3| k.map_or(x, |k| x.lane(g, k));
                 momenta[p] = add6(g, momenta[p], (lane(moved.0), lane(moved.1)));
             }
         }
@@ -230,22 +230,13 @@ pub fn coriolis_matrix_packed(
     velocity: &[Node],
 ) -> Vec<Vec<Node>> {
     let slots = Slots::of(model);
-    let slot_transforms = slots.transforms(g, transforms);
-    let slot_inertias = slots.inertias(g, inertias);
-    by_slots(
-        g,
-        model,
-        &slots,
-        (&slot_transforms, &slot_inertias),
-        velocity,
-        true,
-    )
+    by_slots(g, model, &slots, (transforms, inertias), velocity, true)
 }
 
-/// C over `slots` (the slots' transforms and inertias), partly filled packs of columns
-/// packed again where they meet when `repack`. Column j carries the wrenches f1 = I^C_j ṡ_j + B^C_j s_j,
-/// f2 = I^C_j s_j and f3 = B^C_jᵀ s_j up the tree: C_ij = s_iᵀ f1 and
-/// C_ji = f2ᵀ ṡ_i + f3ᵀ s_i at each ancestor i.
+/// C over `slots` from every body's transform and inertia (zipped into the slots'),
+/// partly filled packs of columns packed again where they meet when `repack`. Column j
+/// carries the wrenches f1 = I^C_j ṡ_j + B^C_j s_j, f2 = I^C_j s_j and f3 = B^C_jᵀ s_j up
+/// the tree: C_ij = s_iᵀ f1 and C_ji = f2ᵀ ṡ_i + f3ᵀ s_i at each ancestor i.
 fn by_slots(
     g: &Graph,
     model: &Model,
@@ -254,7 +245,9 @@ fn by_slots(
     velocity: &[Node],
     repack: bool,
 ) -> Vec<Vec<Node>> {
-    let terms = slot_composite_terms(g, model, slots, transforms, inertias, velocity);
+    let transforms = slots.transforms(g, transforms);
+    let inertias = slots.inertias(g, inertias);
+    let terms = slot_composite_terms(g, model, slots, &transforms, &inertias, velocity);
     let mut c = vec![vec![g.zero(); model.nv]; model.nv];
     let mut arriving: Vec<Vec<CarriedColumns>> = slots.slots.iter().map(|_| Vec::new()).collect();
     for s in (0..slots.slots.len()).rev() {
@@ -347,8 +340,8 @@ mod tests {
     }
 
     /// The packed C (limbs in pairs of lanes, the waist's single columns and the arms'
-    /// pairs packed again where they meet) is the column-by-column C entry for entry, and most of its operations are on
-    /// four lanes.
+    /// pairs packed again where they meet) is the column-by-column C entry for entry, and
+    /// most of its operations are on four lanes.
     #[test]
     fn the_packed_coriolis_matrix_is_the_scalar_one() {
         let model = humanoid();

@@ -31,7 +31,7 @@
 use super::geometry::{self, BodyInertia, JointTransform};
 use super::slot_columns::{pack_columns, CarriedColumns};
 use super::slots::{padded, SlotParent, Slots};
-use super::spatial::{congruence, inertia_times, motion_subspace, symmetric};
+use super::spatial::{congruence, dot6, inertia_times, motion_subspace, symmetric};
 use crate::model::Model;
 use crate::sym::{Graph, Mat3, Node, Vec3};
 
@@ -54,11 +54,6 @@ fn to_parent(g: &Graph, t: &JointTransform, inertia: &BodyInertia) -> BodyInerti
         inertia_about_origin: rotated.sub(g, cross_terms).sub(g, shift),
         mass_centre: None,
     }
-}
-
-/// sᵀ f for a motion column s = [v; ω] and a wrench f = [F; M].
-fn project(g: &Graph, column: &(Vec3, Vec3), force: Vec3, moment: Vec3) -> Node {
-    g.add(column.0.dot(g, force), column.1.dot(g, moment))
 }
 
 /// M(q), full and symmetric, with armature on the diagonal, column by column: each
@@ -128,9 +123,9 @@ fn by_slots(
             carried = pack_columns(g, carried);
         }
         for c in &carried {
-            let (force, moment) = c.wrenches[0];
-            for (row_in_joint, s_row) in subspace.iter().enumerate() {
-                let entry = project(g, s_row, force, moment);
+            for (row_in_joint, &s_row) in subspace.iter().enumerate() {
+                // M_ij = s_iᵀ f.
+                let entry = dot6(g, s_row, c.wrenches[0]);
                 for (k, &column) in c.columns.iter().enumerate() {
                     // In a packed slot lane k is both the row's body and the column's.
                     let row_joint = &model.bodies[*padded(&slot.lanes, k)].joint;

@@ -378,7 +378,7 @@ pub fn centroidal_momentum_matrix(
         if slot.parent == SlotParent::Ground {
             let root = first_moment_in_world(g, &poses[s], &composite[s]);
             for lane in 0..slot.lanes.len() {
-                moment = moment.add(g, Vec3(root.0.map(|x| g.lane(x, lane))));
+                moment = moment.add(g, root.lane(g, lane));
             }
         }
     }
@@ -398,8 +398,8 @@ pub fn centroidal_momentum_matrix(
                 .mul_vec(g, moment)
                 .add(g, lever.cross(g, linear));
             for (lane, &b) in slot.lanes.iter().enumerate() {
-                let l = |v: Vec3| Vec3(v.0.map(|x| g.lane(x, lane)));
-                columns[model.bodies[b].joint.idx_v + k] = (l(linear), l(angular));
+                columns[model.bodies[b].joint.idx_v + k] =
+                    (linear.lane(g, lane), angular.lane(g, lane));
             }
         }
     }

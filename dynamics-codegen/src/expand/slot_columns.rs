@@ -58,8 +58,10 @@ pub(crate) fn pack_columns(g: &Graph, carried: Vec<CarriedColumns>) -> Vec<Carri
         .iter()
         .flat_map(|c| {
             c.columns.iter().enumerate().map(|(k, &column)| {
-                let lane = |v: Vec3| Vec3(v.0.map(|x| g.lane(x, k)));
-                let wrenches = c.wrenches.iter().map(|&(f, m)| (lane(f), lane(m)));
+                let wrenches = c
+                    .wrenches
+                    .iter()
+                    .map(|&(f, m)| (f.lane(g, k), m.lane(g, k)));
                 (column, wrenches.collect())
             })
         })

@@ -53,6 +53,11 @@ impl Vec3 {
         Vec3(self.0.map(|x| g.neg(x)))
     }
 
+    /// Lane k of each component (`Graph::lane`: a scalar component is its own every lane).
+    pub fn lane(self, g: &Graph, k: usize) -> Vec3 {
+        Vec3(self.0.map(|x| g.lane(x, k)))
+    }
+
     /// `s · self`.
     pub fn scale(self, g: &Graph, s: Node) -> Vec3 {
         Vec3(self.0.map(|x| g.mul(s, x)))
