@@ -346,11 +346,16 @@ fn functions_section(model: &Model, costs: &[Cost]) -> Vec<String> {
         .is_some_and(|s| s.closure_count() > 0);
     let mut lines = vec![String::new(), " # Functions".into(), String::new()];
     for cost in costs {
-        let into = if model.outputs.wants_into(&cost.name) {
-            format!(" With [`Self::{}_into`], writing into `out`.", cost.name)
-        } else {
-            String::new()
-        };
+        let mut into = String::new();
+        if model.outputs.wants_into(&cost.name) {
+            into += &format!(" With [`Self::{}_into`], writing into `out`.", cost.name);
+        }
+        if model.outputs.wants_sparse_into(&cost.name) {
+            into += &format!(
+                " With [`Self::{}_sparse_into`], writing only the entries that can be nonzero.",
+                cost.name
+            );
+        }
         lines.push(format!(" - [`Self::{}`]: {}.{into}", cost.name, cost.ops));
     }
     let missing: Vec<&str> = crate::model::Outputs::NAMES

@@ -58,6 +58,12 @@ use derivative_outputs::{
     momentum_derivatives,
 };
 
+/// Whether the function `name` returns a symmetric matrix (M and M⁻¹), of which a
+/// `_sparse_into` twin writes the upper triangle.
+pub(crate) fn is_symmetric(name: &str) -> bool {
+    matches!(name, "mass_matrix" | "mass_matrix_inverse")
+}
+
 /// One function of the catalog.
 pub(crate) struct Entry {
     /// Its name in the generated code.

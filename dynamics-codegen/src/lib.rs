@@ -199,9 +199,11 @@ fn too_large_error(mechanism: &Mechanism, function: &str) -> syn::Error {
     // `constraints` for `constraint_jacobian`, ...).
     let flag = |name: &str| {
         let mut outputs = model::Outputs::default();
-        outputs
-            .enable(name)
-            .then_some(model::Outputs { into: 0, ..outputs })
+        outputs.enable(name).then_some(model::Outputs {
+            into: 0,
+            sparse_into: 0,
+            ..outputs
+        })
     };
     let span = mechanism
         .outputs
@@ -233,17 +235,22 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
     let nalgebra = quote!(#runtime::nalgebra);
     let functions = compiled.functions.iter().map(|f| {
         let fused = passes::fusion::fuse(&f.graph, &f.spec.output);
-        let into = compiled
-            .model
-            .outputs
-            .wants_into(&f.spec.name.to_string())
-            .then(|| {
-                let plan = schedule::Plan::handing_back(&f.graph, &f.spec, fused.clone());
-                print::function_into(&f.graph, &f.spec, &plan)
-            });
+        let name = f.spec.name.to_string();
+        let into = compiled.model.outputs.wants_into(&name).then(|| {
+            let plan = schedule::Plan::handing_back(&f.graph, &f.spec, fused.clone());
+            print::function_into(&f.graph, &f.spec, &plan, print::Writes::Every)
+        });
+        let sparse_into = compiled.model.outputs.wants_sparse_into(&name).then(|| {
+            let writes = print::Writes::Sparse {
+                upper_triangle: functions::is_symmetric(&name),
+            };
+            let written = print::written_nodes(&f.graph, &f.spec.output, writes);
+            let plan = schedule::Plan::writing(&f.graph, &f.spec, fused.clone(), &written);
+            print::function_into(&f.graph, &f.spec, &plan, writes)
+        });
         let plan = schedule::Plan::new(&f.graph, &f.spec, fused);
         let function = print::function(&f.graph, &f.spec, &plan);
-        quote!(#function #into)
+        quote!(#function #into #sparse_into)
     });
     let wrappers = compiled
         .functions

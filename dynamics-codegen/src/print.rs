@@ -374,6 +374,19 @@ pub(crate) fn function(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> Token
     }
 }
 
+/// Which entries of `out` a `_into` twin writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Writes {
+    /// Every entry: `out` holds, bit for bit, what the function returns (`<name>_into`).
+    Every,
+    /// Only the entries that can be nonzero (not a constant 0 of the graph), and of a
+    /// symmetric matrix (`upper_triangle`) only those on and above the diagonal
+    /// (`<name>_sparse_into`): the rest of `out` is left as it is, as Pinocchio's `crba`
+    /// fills the upper triangle of `data.M`, which holds zeros elsewhere. An output
+    /// finished by a solve loop writes every entry.
+    Sparse { upper_triangle: bool },
+}
+
 /// The `<name>_into` twin of a function (asked for as `<name>_into` in `outputs:`): the
 /// same arguments and an `out: &mut` of the output's type, into which each entry is
 /// written as soon as it is computed, so that the result is neither held until the end
@@ -381,22 +394,55 @@ pub(crate) fn function(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> Token
 /// 0.61 on `F64x4`). Cut into pieces, each piece writes the outputs it computes (the plan
 /// hands them back, [`Plan::handing_back`]) and the function the outputs that are leaves.
 /// A function finished by a solve loop writes its right-hand sides into `out` and solves
-/// them there, in place.
+/// them there, in place. With [`Writes::Sparse`], the `<name>_sparse_into` twin, which
+/// writes only some entries: its plan is [`Plan::writing`] over [`written_nodes`].
 #[must_use]
-pub(crate) fn function_into(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> TokenStream {
+pub(crate) fn function_into(
+    graph: &Graph,
+    spec: &FunctionSpec,
+    plan: &Plan,
+    writes: Writes,
+) -> TokenStream {
     let ops = graph.ops();
     let trait_ = &spec.scalar_trait;
     let name = &spec.name;
-    let name_into = format_ident!("{}_into", name);
     let vis = &spec.vis;
     let ret = spec.output.ty();
     let count = crate::ir::op_count(graph, &spec.output);
-    let link = format!(
-        "As [`{name}`](Self::{name}), its result written into `out`, every entry of which is \
-         overwritten."
-    );
+    let suffix = match writes {
+        Writes::Every => "into",
+        Writes::Sparse { .. } => "sparse_into",
+    };
+    let name_into = format_ident!("{}_{}", name, suffix);
+    let writes = effective_writes(&spec.output, writes);
+    let places = output_places(&spec.output, &ops, writes);
+    let link = match writes {
+        Writes::Every => format!(
+            "As [`{name}`](Self::{name}), its result written into `out`, every entry of which \
+             is overwritten."
+        ),
+        Writes::Sparse { upper_triangle } => {
+            let written: usize = places.values().map(Vec::len).sum();
+            let which = if upper_triangle {
+                "the entries on and above the diagonal that can be nonzero"
+            } else {
+                "the entries that can be nonzero"
+            };
+            format!(
+                "As [`{name}`](Self::{name}), writing into `out` only {which} ({written} of its \
+                 {total}) and leaving the others as they are: pass a matrix that holds zeros \
+                 there (zeroed once and reused, as Pinocchio's `data.M` for `crba`), and it \
+                 holds the result{upper}.",
+                total = spec.output.nodes().len(),
+                upper = if upper_triangle {
+                    " in its upper triangle"
+                } else {
+                    ""
+                },
+            )
+        }
+    };
     let docs = doc_attrs(&link, &count, &spec.output);
-    let places = output_places(&spec.output);
     let params = function_params(&ops, spec, plan);
     let body = if plan.pieces.len() > 1 {
         plan.chained_pieces_into(&ops, spec, &places)
@@ -438,12 +484,47 @@ pub(crate) fn function_into(graph: &Graph, spec: &FunctionSpec, plan: &Plan) -> 
     }
 }
 
+/// [`Writes::Every`] for an output finished by a solve loop (which solves in the whole of
+/// `out`), else `writes`.
+fn effective_writes(output: &Output, writes: Writes) -> Writes {
+    match output {
+        Output::Solved(_) => Writes::Every,
+        _ => writes,
+    }
+}
+
+/// The output nodes a `_into` twin writes with `writes`, each once, in the output's order
+/// (every node of an output that writes every entry): what [`Plan::writing`] schedules.
+#[must_use]
+pub(crate) fn written_nodes(graph: &Graph, output: &Output, writes: Writes) -> Vec<Node> {
+    let writes = effective_writes(output, writes);
+    if writes == Writes::Every {
+        // Besides what it writes, a solve loop reads its factor and pivots.
+        return output.nodes();
+    }
+    let mut seen = std::collections::HashSet::new();
+    output_writes(output, &graph.ops(), writes)
+        .into_iter()
+        .map(|(n, _)| n)
+        .filter(|n| seen.insert(*n))
+        .collect()
+}
+
 /// Where each node of `output` goes in `out` (`(*out)[i][j]`, `(*out).0[i][j]`, ...), a node
-/// in as many places as it fills; for an output finished by a solve loop, where its
-/// right-hand sides go, to be solved there in place.
-fn output_places(output: &Output) -> HashMap<Node, Vec<TokenStream>> {
-    fn walk(output: &Output, place: &TokenStream, acc: &mut HashMap<Node, Vec<TokenStream>>) {
-        let mut at = |n: Node, place: TokenStream| acc.entry(n).or_default().push(place);
+/// in as many places as it fills, of those `writes` asks for; for an output finished by a
+/// solve loop, where its right-hand sides go, to be solved there in place.
+fn output_places(output: &Output, ops: &[Op], writes: Writes) -> HashMap<Node, Vec<TokenStream>> {
+    let mut places: HashMap<Node, Vec<TokenStream>> = HashMap::new();
+    for (n, place) in output_writes(output, ops, writes) {
+        places.entry(n).or_default().push(place);
+    }
+    places
+}
+
+/// Each written node of `output` with its place in `out`, in the output's order.
+fn output_writes(output: &Output, ops: &[Op], writes: Writes) -> Vec<(Node, TokenStream)> {
+    fn walk(output: &Output, place: &TokenStream, acc: &mut Vec<(Node, TokenStream)>) {
+        let mut at = |n: Node, place: TokenStream| acc.push((n, place));
         match output {
             Output::Scalar(n) => at(*n, place.clone()),
             Output::Vector(v) => {
@@ -475,9 +556,27 @@ fn output_places(output: &Output) -> HashMap<Node, Vec<TokenStream>> {
             Output::Solved(s) => walk(&s.returned(), place, acc),
         }
     }
-    let mut places = HashMap::new();
-    walk(output, &quote!((*out)), &mut places);
-    places
+    let mut all = Vec::new();
+    walk(output, &quote!((*out)), &mut all);
+    let Writes::Sparse { upper_triangle } = writes else {
+        return all;
+    };
+    // The entries below the diagonal of a symmetric matrix: the output is one matrix,
+    // walked row by row.
+    let below_diagonal: Vec<bool> = match output {
+        Output::Matrix(rows) if upper_triangle => rows
+            .iter()
+            .enumerate()
+            .flat_map(|(i, row)| (0..row.len()).map(move |j| j < i))
+            .collect(),
+        _ => vec![false; all.len()],
+    };
+    let zero = Op::Const(crate::sym::Const::new(0.0));
+    all.into_iter()
+        .zip(below_diagonal)
+        .filter(|((n, _), below)| !below && ops[n.index()] != zero)
+        .map(|(write, _)| write)
+        .collect()
 }
 
 /// The lints a generated function allows: it is long, its constants are printed to the

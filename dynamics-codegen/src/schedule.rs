@@ -150,7 +150,7 @@ impl Plan {
     /// If a live input is not covered by `spec.args` (array missing or index out of range):
     /// that is a bug of the caller, not of the user's model.
     pub(crate) fn new(graph: &Graph, spec: &FunctionSpec, fused: HashMap<Node, Fused>) -> Self {
-        Self::build(graph, spec, fused, false)
+        Self::build(graph, spec, fused, &spec.output.nodes(), false)
     }
 
     /// [`Plan::new`] for a `_into` function, which writes each output where it is computed:
@@ -161,18 +161,30 @@ impl Plan {
         spec: &FunctionSpec,
         fused: HashMap<Node, Fused>,
     ) -> Self {
-        Self::build(graph, spec, fused, true)
+        Self::build(graph, spec, fused, &spec.output.nodes(), true)
     }
 
-    /// [`Plan::new`], the pieces handing their outputs back whenever there are several when
-    /// `always_hand_back`.
+    /// [`Plan::handing_back`] for a `_sparse_into` function, which writes only the output
+    /// nodes `written` (the rest of the output is not computed for it, and a constant
+    /// output not written is not defined).
+    pub(crate) fn writing(
+        graph: &Graph,
+        spec: &FunctionSpec,
+        fused: HashMap<Node, Fused>,
+        written: &[Node],
+    ) -> Self {
+        Self::build(graph, spec, fused, written, true)
+    }
+
+    /// [`Plan::new`] for the output nodes `outputs`, the pieces handing their outputs back
+    /// whenever there are several when `always_hand_back`.
     fn build(
         graph: &Graph,
         spec: &FunctionSpec,
         fused: HashMap<Node, Fused>,
+        outputs: &[Node],
         always_hand_back: bool,
     ) -> Self {
-        let outputs = &spec.output.nodes();
         let live = &graph.live(outputs);
         let ops = &graph.ops();
         check_inputs(ops, live, &spec.args);

@@ -94,6 +94,16 @@
 //! solve loop (`forward_dynamics_derivatives`, M⁻¹ of a large tree) has its right-hand
 //! sides written into `out` and solved there in place.
 //!
+//! A name with `_sparse_into` (`mass_matrix_sparse_into`) asks for a twin that writes only
+//! the entries that can be nonzero, and of a symmetric matrix (`mass_matrix`,
+//! `mass_matrix_inverse`) only those on and above the diagonal, and leaves the others as
+//! they are: give it a matrix zeroed once and keep passing the same one, as Pinocchio's
+//! `crba` fills the upper triangle of `data.M`. On a branched robot most of a large
+//! matrix is zero (between two legs, between a leg and an arm) and stores cost time: this
+//! is the call to make when only M's upper triangle is read (a Cholesky or LDLᵀ
+//! factorization) or when the zeros are known. Its doc comment says how many entries it
+//! writes. An output finished by a solve loop writes every entry, as its `_into` twin.
+//!
 //! Every function's arguments come in the order `q`, `v`, then `a` or `tau`, then `p` (only
 //! when the mechanism declares `parameters`), then `loads` (only for the functions marked
 //! *loads* below, and only when the mechanism declares loads). `q: &[T; NQ]`, `v`, `a`,

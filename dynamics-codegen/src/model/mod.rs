@@ -102,6 +102,10 @@ pub struct Outputs {
     /// The functions asked for with `_into` (`mass_matrix_into`), which get a twin that
     /// writes into the caller's `out`: bit `i` for [`Outputs::NAMES`]`[i]`.
     pub into: u64,
+    /// The functions asked for with `_sparse_into` (`mass_matrix_sparse_into`), whose twin
+    /// writes only the entries that can be nonzero (of a symmetric matrix, those on and
+    /// above the diagonal): bit `i` for [`Outputs::NAMES`]`[i]`.
+    pub sparse_into: u64,
 }
 
 impl Outputs {
@@ -192,6 +196,7 @@ impl Outputs {
             mass_matrix_inverse: false,
             momentum_derivatives: false,
             into: 0,
+            sparse_into: 0,
         }
     }
 
@@ -212,15 +217,29 @@ impl Outputs {
     }
 
     /// Turns on the output with this name; `false` if the name is unknown. A known
-    /// function's name with `_into` (`mass_matrix_into`) turns it on with its `_into` twin.
+    /// function's name with `_into` (`mass_matrix_into`) turns it on with its `_into` twin,
+    /// with `_sparse_into` with its `_sparse_into` twin.
     pub fn enable(&mut self, name: &str) -> bool {
-        if let Some(stem) = name.strip_suffix("_into") {
+        // The index in `NAMES` of an output name or alias.
+        let twin = |stem: &str| {
             let stem = Self::ALIASES
                 .iter()
                 .find(|(alias, _)| *alias == stem)
                 .map_or(stem, |(_, full)| full);
-            return match Self::NAMES.iter().position(|n| *n == stem) {
-                Some(i) if self.enable(stem) => {
+            Self::NAMES.iter().position(|n| *n == stem)
+        };
+        if let Some(stem) = name.strip_suffix("_sparse_into") {
+            return match twin(stem) {
+                Some(i) if self.enable(Self::NAMES[i]) => {
+                    self.sparse_into |= 1 << i;
+                    true
+                }
+                _ => false,
+            };
+        }
+        if let Some(stem) = name.strip_suffix("_into") {
+            return match twin(stem) {
+                Some(i) if self.enable(Self::NAMES[i]) => {
                     self.into |= 1 << i;
                     true
                 }
@@ -280,6 +299,14 @@ impl Outputs {
             .iter()
             .position(|n| *n == name)
             .is_some_and(|i| self.into & (1 << i) != 0)
+    }
+
+    /// Whether the function `name` was asked for with `_sparse_into`.
+    pub fn wants_sparse_into(&self, name: &str) -> bool {
+        Self::NAMES
+            .iter()
+            .position(|n| *n == name)
+            .is_some_and(|i| self.sparse_into & (1 << i) != 0)
     }
 
     /// Whether any output needs at least one degree of freedom.

@@ -284,7 +284,8 @@ pub(crate) fn output_is_known(outputs: &mut Outputs, name: &Name, d: &mut Diagno
             format!(
                 "unknown output `{}`{suggestion} The outputs are {} (or the short forms {}), \
                  each also with `_into` (`mass_matrix_into`) for a twin that writes into the \
-                 caller's `out`.",
+                 caller's `out`, or with `_sparse_into` for one that writes only the entries \
+                 that can be nonzero.",
                 name.text,
                 Outputs::NAMES.join(", "),
                 Outputs::ALIASES

@@ -663,6 +663,12 @@ fn an_output_with_into_asks_for_its_twin_too() {
     assert!(!outputs.wants_into("inverse_dynamics"));
     assert!(!outputs.enable("mass_matirx_into"));
     assert!(!outputs.enable("_into"));
+    assert!(!outputs.wants_sparse_into("mass_matrix"));
+    assert!(outputs.enable("coriolis_sparse_into"));
+    assert!(outputs.coriolis && outputs.wants_sparse_into("coriolis_matrix"));
+    assert!(!outputs.wants_into("coriolis_matrix"));
+    assert!(!outputs.enable("mass_matirx_sparse_into"));
+    assert!(!outputs.enable("_sparse_into"));
     let e = errors(quote! {
         struct Bad;
         outputs: [mass_matirx_into];

@@ -234,7 +234,8 @@ fn states(path: &str) -> Vec<State> {
 }
 
 /// The `_into` twins write, bit for bit, what their functions return (so what the checks
-/// above held to Pinocchio's), into storage first filled with NaN.
+/// above held to Pinocchio's), into storage first filled with NaN; the `_sparse_into` twins,
+/// into zeros, the same in the entries they write (of M, its upper triangle).
 fn into_twins_agree(state: &State, k: usize) {
     fn same<O: PartialEq + std::fmt::Debug>(
         what: &str,
@@ -289,6 +290,20 @@ fn into_twins_agree(state: &State, k: usize) {
         Robot::mass_matrix_inverse(q),
         nan,
         |o| Robot::mass_matrix_inverse_into(q, o),
+    );
+    // The sparse twins, into zeros: M's upper triangle, and all of C.
+    let m = Robot::mass_matrix(q);
+    let upper: [[f64; NV]; NV] =
+        std::array::from_fn(|i| std::array::from_fn(|j| if j < i { 0.0 } else { m[i][j] }));
+    same("mass_matrix_sparse", k, upper, [[0.0; NV]; NV], |o| {
+        Robot::mass_matrix_sparse_into(q, o)
+    });
+    same(
+        "coriolis_matrix_sparse",
+        k,
+        Robot::coriolis_matrix(q, v),
+        [[0.0; NV]; NV],
+        |o| Robot::coriolis_matrix_sparse_into(q, v, o),
     );
 }
 
@@ -393,6 +408,10 @@ fn public(c: &mut Criterion) {
         "forward_dynamics_derivatives_into" => (matrix(), matrix()),
             |s, out| Robot::forward_dynamics_derivatives_into(&s.q, &s.v, &s.tau, &mut out),
         "mass_matrix_inverse_into" => matrix(), |s, out| Robot::mass_matrix_inverse_into(&s.q, &mut out),
+        // Zeroed once, as Pinocchio's `Data`: the sparse twins leave the zeros there.
+        "mass_matrix_sparse_into" => matrix(), |s, out| Robot::mass_matrix_sparse_into(&s.q, &mut out),
+        "coriolis_matrix_sparse_into" => matrix(),
+            |s, out| Robot::coriolis_matrix_sparse_into(&s.q, &s.v, &mut out),
     );
     group.finish();
 }
