@@ -66,7 +66,7 @@ mechanism! {
     /// branches zero in M and C.
     pub struct Legged;
     outputs: [mass_matrix_sparse_into, coriolis_matrix_sparse_into,
-              centroidal_momentum_matrix_sparse_into];
+              centroidal_momentum_matrix_sparse_into, inverse_dynamics_derivatives_sparse_into];
     body base { mass: 3.0, com: [0.01, 0.02, -0.03], inertia: [[0.1, 0.01, 0.0], [0.01, 0.12, 0.02], [0.0, 0.02, 0.09]] }
     body thigh_l { mass: 1.0, com: [0.0, 0.0, -0.1], shape: rod(length: 0.2, axis: z) }
     body shin_l { mass: 0.5, com: [0.0, 0.01, -0.1], shape: rod(length: 0.2, axis: z) }
@@ -124,6 +124,20 @@ fn legged_sparse_twins<T: Scalar + Bits>(
         left >= 16,
         "{}: {left} entries left",
         what("coriolis_matrix")
+    );
+    // A pair of matrices: ∂τ/∂q above ∂τ/∂q̇, 22 × 11 as `Bits` flattens them.
+    let a = v.map(|x| x * x);
+    let left = assert_sparse(
+        Legged::inverse_dynamics_derivatives(&q, &v, &a),
+        ([[n; N]; N], [[n; N]; N]),
+        (2 * N, N, false),
+        |o| Legged::inverse_dynamics_derivatives_sparse_into(&q, &v, &a, o),
+        &what("inverse_dynamics_derivatives"),
+    );
+    assert!(
+        left >= 16,
+        "{}: {left} entries left",
+        what("inverse_dynamics_derivatives")
     );
     assert_sparse(
         Legged::centroidal_momentum_matrix(&q),

@@ -95,7 +95,8 @@ OUTPUTS="inverse_dynamics, mass_matrix_into, forward_dynamics, gravity, bias, co
               joint_jacobians_world, joint_jacobians_world_time_variation, center_of_mass,
               center_of_mass_jacobian, centroidal_momentum_matrix_into, centroidal_bias,
               inverse_dynamics_derivatives_into, forward_dynamics_derivatives_into,
-              mass_matrix_inverse_into, mass_matrix_sparse_into, coriolis_matrix_sparse_into"
+              mass_matrix_inverse_into, mass_matrix_sparse_into, coriolis_matrix_sparse_into,
+              inverse_dynamics_derivatives_sparse_into, mass_matrix_inverse_sparse_into"
 
 : > "$OUT/pinocchio.tsv"
 : > "$OUT/build.tsv"
@@ -240,10 +241,14 @@ ROWS = [("rnea", ["rnea"], "inverse_dynamics"),
         ("computeRNEADerivatives", ["computeRNEADerivatives"], "inverse_dynamics_derivatives_into"),
         ("computeABADerivatives", ["computeABADerivatives"], "forward_dynamics_derivatives_into"),
         ("computeMinverse", ["computeMinverse"], "mass_matrix_inverse_into"),
-        # Only the entries Pinocchio writes (`_sparse_into`): M's upper triangle and C's
-        # entries that can be nonzero, the rest of `out` zero from the start, as in `Data`.
+        # Only the entries that can be nonzero (`_sparse_into`), of M and M⁻¹ those on and
+        # above the diagonal (what crba and computeMinverse fill), the rest of `out` zero
+        # from the start, as in Pinocchio's `Data`.
         ("crba", ["crba", "crba_world"], "mass_matrix_sparse_into"),
-        ("computeCoriolisMatrix", ["computeCoriolisMatrix"], "coriolis_matrix_sparse_into")]
+        ("computeCoriolisMatrix", ["computeCoriolisMatrix"], "coriolis_matrix_sparse_into"),
+        ("computeRNEADerivatives", ["computeRNEADerivatives"],
+         "inverse_dynamics_derivatives_sparse_into"),
+        ("computeMinverse", ["computeMinverse"], "mass_matrix_inverse_sparse_into")]
 
 robots = [line.split("\t")[:3] for line in open(os.path.join(out_dir, "robots.tsv"))]
 pin, pin_states, _, header = results.pinocchio(os.path.join(out_dir, "pinocchio.tsv"))

@@ -291,19 +291,37 @@ fn into_twins_agree(state: &State, k: usize) {
         nan,
         |o| Robot::mass_matrix_inverse_into(q, o),
     );
-    // The sparse twins, into zeros: M's upper triangle, and all of C.
-    let m = Robot::mass_matrix(q);
-    let upper: [[f64; NV]; NV] =
-        std::array::from_fn(|i| std::array::from_fn(|j| if j < i { 0.0 } else { m[i][j] }));
-    same("mass_matrix_sparse", k, upper, [[0.0; NV]; NV], |o| {
+    // The sparse twins, into zeros: the upper triangles of M and M⁻¹, all of C and ∂τ.
+    let upper = |m: [[f64; NV]; NV]| -> [[f64; NV]; NV] {
+        std::array::from_fn(|i| std::array::from_fn(|j| if j < i { 0.0 } else { m[i][j] }))
+    };
+    let zero = [[0.0; NV]; NV];
+    same("mass_matrix_sparse", k, upper(Robot::mass_matrix(q)), zero, |o| {
         Robot::mass_matrix_sparse_into(q, o)
     });
     same(
         "coriolis_matrix_sparse",
         k,
         Robot::coriolis_matrix(q, v),
-        [[0.0; NV]; NV],
+        zero,
         |o| Robot::coriolis_matrix_sparse_into(q, v, o),
+    );
+    same(
+        "inverse_dynamics_derivatives_sparse",
+        k,
+        Robot::inverse_dynamics_derivatives(q, v, a),
+        (zero, zero),
+        |o| Robot::inverse_dynamics_derivatives_sparse_into(q, v, a, o),
+    );
+    // M⁻¹ finished by a solve loop writes every entry: its lower triangle is either.
+    let inverse = Robot::mass_matrix_inverse(q);
+    let mut out = zero;
+    Robot::mass_matrix_inverse_sparse_into(q, &mut out);
+    let whole = (1..NV).any(|i| (0..i).any(|j| out[i][j] != 0.0));
+    let want = if whole { inverse } else { upper(inverse) };
+    assert!(
+        format!("{want:?}") == format!("{out:?}"),
+        "mass_matrix_inverse_sparse_into differs from mass_matrix_inverse at sample {k}"
     );
 }
 
@@ -412,6 +430,10 @@ fn public(c: &mut Criterion) {
         "mass_matrix_sparse_into" => matrix(), |s, out| Robot::mass_matrix_sparse_into(&s.q, &mut out),
         "coriolis_matrix_sparse_into" => matrix(),
             |s, out| Robot::coriolis_matrix_sparse_into(&s.q, &s.v, &mut out),
+        "inverse_dynamics_derivatives_sparse_into" => (matrix(), matrix()),
+            |s, out| Robot::inverse_dynamics_derivatives_sparse_into(&s.q, &s.v, &s.a, &mut out),
+        "mass_matrix_inverse_sparse_into" => matrix(),
+            |s, out| Robot::mass_matrix_inverse_sparse_into(&s.q, &mut out),
     );
     group.finish();
 }
