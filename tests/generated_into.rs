@@ -66,7 +66,8 @@ mechanism! {
     /// branches zero in M and C.
     pub struct Legged;
     outputs: [mass_matrix_sparse_into, coriolis_matrix_sparse_into,
-              centroidal_momentum_matrix_sparse_into, inverse_dynamics_derivatives_sparse_into];
+              centroidal_momentum_matrix_sparse_into, inverse_dynamics_derivatives_sparse_into,
+              joint_jacobians_sparse_into];
     body base { mass: 3.0, com: [0.01, 0.02, -0.03], inertia: [[0.1, 0.01, 0.0], [0.01, 0.12, 0.02], [0.0, 0.02, 0.09]] }
     body thigh_l { mass: 1.0, com: [0.0, 0.0, -0.1], shape: rod(length: 0.2, axis: z) }
     body shin_l { mass: 0.5, com: [0.0, 0.01, -0.1], shape: rod(length: 0.2, axis: z) }
@@ -138,6 +139,20 @@ fn legged_sparse_twins<T: Scalar + Bits>(
         left >= 16,
         "{}: {left} entries left",
         what("inverse_dynamics_derivatives")
+    );
+    // A stack of six 6 × 11 Jacobians, one per body: the columns of joints that do not
+    // carry the body are zero.
+    let left = assert_sparse(
+        Legged::joint_jacobians(&q),
+        [[[n; N]; 6]; 6],
+        (6 * 6, N, false),
+        |o| Legged::joint_jacobians_sparse_into(&q, o),
+        &what("joint_jacobians"),
+    );
+    assert!(
+        left >= 6 * (2 + 2 + 3),
+        "{}: {left} entries left",
+        what("joint_jacobians")
     );
     assert_sparse(
         Legged::centroidal_momentum_matrix(&q),

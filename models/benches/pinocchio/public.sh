@@ -96,7 +96,8 @@ OUTPUTS="inverse_dynamics, mass_matrix_into, forward_dynamics, gravity, bias, co
               center_of_mass_jacobian, centroidal_momentum_matrix_into, centroidal_bias,
               inverse_dynamics_derivatives_into, forward_dynamics_derivatives_into,
               mass_matrix_inverse_into, mass_matrix_sparse_into, coriolis_matrix_sparse_into,
-              inverse_dynamics_derivatives_sparse_into, mass_matrix_inverse_sparse_into"
+              inverse_dynamics_derivatives_sparse_into, mass_matrix_inverse_sparse_into,
+              joint_jacobians_sparse_into"
 
 : > "$OUT/pinocchio.tsv"
 : > "$OUT/build.tsv"
@@ -248,7 +249,10 @@ ROWS = [("rnea", ["rnea"], "inverse_dynamics"),
         ("computeCoriolisMatrix", ["computeCoriolisMatrix"], "coriolis_matrix_sparse_into"),
         ("computeRNEADerivatives", ["computeRNEADerivatives"],
          "inverse_dynamics_derivatives_sparse_into"),
-        ("computeMinverse", ["computeMinverse"], "mass_matrix_inverse_sparse_into")]
+        ("computeMinverse", ["computeMinverse"], "mass_matrix_inverse_sparse_into"),
+        # getJointJacobian writes a joint's supporting columns into a J zeroed once.
+        ("computeJointJacobians + getJointJacobian × all joints",
+         ["computeJointJacobians_getJointJacobian"], "joint_jacobians_sparse_into")]
 
 robots = [line.split("\t")[:3] for line in open(os.path.join(out_dir, "robots.tsv"))]
 pin, pin_states, _, header = results.pinocchio(os.path.join(out_dir, "pinocchio.tsv"))

@@ -235,7 +235,7 @@ fn states(path: &str) -> Vec<State> {
 
 /// The `_into` twins write, bit for bit, what their functions return (so what the checks
 /// above held to Pinocchio's), into storage first filled with NaN; the `_sparse_into` twins,
-/// into zeros, the same in the entries they write (of M, its upper triangle).
+/// into zeros, the same in the entries they write (of M and M⁻¹, the upper triangle).
 fn into_twins_agree(state: &State, k: usize) {
     fn same<O: PartialEq + std::fmt::Debug>(
         what: &str,
@@ -312,6 +312,14 @@ fn into_twins_agree(state: &State, k: usize) {
         Robot::inverse_dynamics_derivatives(q, v, a),
         (zero, zero),
         |o| Robot::inverse_dynamics_derivatives_sparse_into(q, v, a, o),
+    );
+    let jacobians = Robot::joint_jacobians(q);
+    same(
+        "joint_jacobians_sparse",
+        k,
+        jacobians,
+        jacobians.map(|j| j.map(|r| r.map(|_| 0.0))),
+        |o| Robot::joint_jacobians_sparse_into(q, o),
     );
     // M⁻¹ finished by a solve loop writes every entry: its lower triangle is either.
     let inverse = Robot::mass_matrix_inverse(q);
@@ -416,6 +424,8 @@ fn public(c: &mut Criterion) {
         "mass_matrix_inverse" => |s| Robot::mass_matrix_inverse(&s.q),
     );
     let matrix = || [[0.0; NV]; NV];
+    // Every joint's 6 × nv Jacobian, zero, as timing.cpp's matrices for getJointJacobian.
+    let jacobians_zero = Robot::joint_jacobians(&states[0].q).map(|j| j.map(|r| r.map(|_| 0.0)));
     timed_into!(group, states,
         "mass_matrix_into" => matrix(), |s, out| Robot::mass_matrix_into(&s.q, &mut out),
         "centroidal_momentum_matrix_into" => [[0.0; NV]; 6],
@@ -434,6 +444,8 @@ fn public(c: &mut Criterion) {
             |s, out| Robot::inverse_dynamics_derivatives_sparse_into(&s.q, &s.v, &s.a, &mut out),
         "mass_matrix_inverse_sparse_into" => matrix(),
             |s, out| Robot::mass_matrix_inverse_sparse_into(&s.q, &mut out),
+        "joint_jacobians_sparse_into" => jacobians_zero,
+            |s, out| Robot::joint_jacobians_sparse_into(&s.q, &mut out),
     );
     group.finish();
 }
