@@ -505,13 +505,12 @@ pub(super) fn mass_matrix_inverse(model: &Model) -> Expanded {
 fn mass_matrix_inverse_candidates(model: &Model) -> Vec<(Graph, Output, &'static str)> {
     let straight = {
         let (g, t, i) = fresh_graph(model);
-        let rows = ldlt::inverse(&g, model, regrouped_mass_matrix(&g, model, &t, &i, false));
+        let rows = ldlt::inverse(&g, model, regrouped_mass_matrix(&g, model, &t, &i, true));
         (g, Output::Matrix(rows), "")
     };
     let by_loop = {
         let (g, t, i) = fresh_graph(model);
-        let half =
-            ldlt::inverse_halfway(&g, model, regrouped_mass_matrix(&g, model, &t, &i, false));
+        let half = ldlt::inverse_halfway(&g, model, regrouped_mass_matrix(&g, model, &t, &i, true));
         let solve = TreeSolve {
             parents: half.parents,
             factor: half.factor,

@@ -39,8 +39,19 @@ macro_rules! call {
     };
 }
 
+/// The lines besides the six: none (`plain`), or M⁻¹ too (`inverse`, the public robots).
+macro_rules! extra {
+    (plain, $a:ty, $b:ty, $states:expr) => {};
+    (inverse, $a:ty, $b:ty, $states:expr) => {
+        line("mass_matrix_inverse", $states, |s| <$a>::mass_matrix_inverse(&s.0), |s| <$b>::mass_matrix_inverse(&s.0));
+    };
+}
+
 macro_rules! compare {
-    ($a:ty, $b:ty, $states:expr, $loads:ident) => {{
+    ($a:ty, $b:ty, $states:expr, $loads:ident) => {
+        compare!($a, $b, $states, $loads, plain)
+    };
+    ($a:ty, $b:ty, $states:expr, $loads:ident, $extra:ident) => {{
         let states = $states;
         for s in &states {
             let (ca, cb) = (<$a>::coriolis_matrix(&s.0, &s.1), <$b>::coriolis_matrix(&s.0, &s.1));
@@ -52,6 +63,7 @@ macro_rules! compare {
         line("inverse_dynamics", &states, |s| call!($loads, $a, inverse_dynamics, s), |s| call!($loads, $b, inverse_dynamics, s));
         line("bias", &states, |s| <$a>::bias(&s.0, &s.1), |s| <$b>::bias(&s.0, &s.1));
         line("gravity", &states, |s| <$a>::gravity(&s.0), |s| <$b>::gravity(&s.0));
+        extra!($extra, $a, $b, &states);
     }};
 }
 
