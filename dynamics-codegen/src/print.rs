@@ -287,11 +287,17 @@ fn tree_solve_header(s: &TreeSolve) -> TokenStream {
     });
     let factor = s.factor.iter().map(|&x| var(x));
     let pivots = s.inverse_pivot.iter().map(|&x| var(x));
+    // The last sweep alone does not scale by the pivots (its right-hand sides hold D⁻¹).
+    let pivots = (s.sweeps == Sweeps::All).then(|| {
+        quote! {
+            let inverse_pivot: [T; #n] = [#(#pivots),*];
+        }
+    });
     quote! {
         const TREE: #runtime::tree_ldlt::CoordinateTree<#n, #p> =
             #runtime::tree_ldlt::CoordinateTree::new([#(#parents),*]);
         let factor: [T; #p] = [#(#factor),*];
-        let inverse_pivot: [T; #n] = [#(#pivots),*];
+        #pivots
     }
 }
 
@@ -1811,6 +1817,28 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
         assert!(!one_copy.contains("run_kernel("), "{one_copy}");
         assert!(one_copy.contains("constWIDE:bool=false;"), "{one_copy}");
         assert!(one_copy.contains(&solve_in("WIDE")), "{one_copy}");
+        assert!(whole.contains("letinverse_pivot:[T;2]"), "{whole}");
+    }
+
+    /// The last sweep of M⁻¹ alone reads no pivot (its right-hand sides hold D⁻¹), so no
+    /// `inverse_pivot` is bound: unused, it would warn in code written out by the CLI.
+    #[test]
+    fn the_last_sweep_binds_no_pivots() {
+        let g = Graph::new();
+        let xs = long_chain(&g, 200);
+        let solved = Output::Solved(TreeSolve {
+            parents: vec![None, Some(0)],
+            factor: vec![xs[1]],
+            inverse_pivot: vec![xs[2], xs[4]],
+            rhs: vec![vec![vec![xs[0], xs[3]], vec![xs[3], xs[4]]]],
+            sweeps: Sweeps::LastOfInverse,
+        });
+        let mut s = spec("inverse", &[(Array::Q, 8), (Array::V, 3)], solved);
+        s.split_threshold = usize::MAX;
+        let text = pretty(emit_function(&g, &s));
+        assert!(text.contains("solve_lower_columns"), "{text}");
+        assert!(text.contains("mirror_upper_triangle"), "{text}");
+        assert!(!text.contains("inverse_pivot"), "{text}");
     }
 
     /// `Scalar` as the runtime defines it, reduced to what generated code uses.
