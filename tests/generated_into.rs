@@ -11,7 +11,7 @@
 //! on and above the diagonal): on a free-floating tree with two isomorphic legs (its M and
 //! C computed over packed lanes) and on the chain cut into pieces.
 
-use dynamics_runtime::{mechanism, F64x4, Mechanism, Scalar};
+use dynamics_runtime::{batch, mechanism, F64x4, Mechanism, Scalar};
 use dynamics_tests::into_twins::{assert_same, assert_sparse, state, wobble, Bits};
 
 mechanism! {
@@ -179,6 +179,26 @@ fn the_sparse_twins_write_the_entries_that_can_be_nonzero() {
             F64x4::splat(f64::NAN),
             &what,
         );
+    }
+}
+
+/// `batch::map1_into` over a sparse twin: its packed buffer starts at zero and the twin
+/// leaves the zeros, so each state's result is whole, M's lower triangle zero, on nine
+/// states (a padded last pack of lanes).
+#[test]
+fn the_batch_helpers_take_the_sparse_twins() {
+    const N: usize = 11;
+    let q: Vec<[f64; 12]> = (0..9).map(|k| normalized(state(950 + k))).collect();
+    let mut m = vec![[[f64::NAN; N]; N]; q.len()];
+    batch::map1_into(&q, &mut m, Legged::mass_matrix_sparse_into).expect("equal lengths");
+    for (k, (q, m)) in q.iter().zip(&m).enumerate() {
+        let full = Legged::mass_matrix(q);
+        for i in 0..N {
+            for j in 0..N {
+                let want = if j < i { 0.0 } else { full[i][j] };
+                assert_eq!(m[i][j].to_bits(), want.to_bits(), "state {k}, ({i}, {j})");
+            }
+        }
     }
 }
 

@@ -382,8 +382,9 @@ macro_rules! map_fn {
         /// `batch::map1_into(&q, &mut m, Robot::mass_matrix_into)`. One packed result lives
         /// for the whole call, nothing is returned by value, and it is unpacked four results
         /// at a time. `f` must set every entry of that result (the generated `_into`
-        /// functions set all of them, zeros included): the buffer starts at zero and is
-        /// not cleared between packs.
+        /// functions set all of them, zeros included) or leave zero those it does not set
+        /// (the `_sparse_into` functions: below M's diagonal, or between branches): the
+        /// buffer starts at zero and is not cleared between packs.
         ///
         /// # Errors
         /// [`LengthMismatch`] for the first input not as long as `out` (nothing written).

@@ -103,6 +103,9 @@
 //! is the call to make when only M's upper triangle is read (a Cholesky or LDLᵀ
 //! factorization) or when the zeros are known. Its doc comment says how many entries it
 //! writes. An output finished by a solve loop writes every entry, as its `_into` twin.
+//! `batch::map1_into(&q, &mut m, Robot::mass_matrix_sparse_into)` takes it as it takes
+//! the `_into` twins (its packed buffer starts at zero): each state's M then holds its
+//! upper triangle, zeros below.
 //!
 //! Every function's arguments come in the order `q`, `v`, then `a` or `tau`, then `p` (only
 //! when the mechanism declares `parameters`), then `loads` (only for the functions marked
