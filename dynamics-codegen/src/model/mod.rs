@@ -228,23 +228,22 @@ impl Outputs {
                 .map_or(stem, |(_, full)| full);
             Self::NAMES.iter().position(|n| *n == stem)
         };
-        if let Some(stem) = name.strip_suffix("_sparse_into") {
-            return match twin(stem) {
-                Some(i) if self.enable(Self::NAMES[i]) => {
-                    self.sparse_into |= 1 << i;
-                    true
-                }
-                _ => false,
-            };
-        }
-        if let Some(stem) = name.strip_suffix("_into") {
-            return match twin(stem) {
-                Some(i) if self.enable(Self::NAMES[i]) => {
-                    self.into |= 1 << i;
-                    true
-                }
-                _ => false,
-            };
+        // `_sparse_into` first: it ends with `_into` too.
+        for (suffix, sparse) in [("_sparse_into", true), ("_into", false)] {
+            if let Some(stem) = name.strip_suffix(suffix) {
+                return match twin(stem) {
+                    Some(i) if self.enable(Self::NAMES[i]) => {
+                        let bits = if sparse {
+                            &mut self.sparse_into
+                        } else {
+                            &mut self.into
+                        };
+                        *bits |= 1 << i;
+                        true
+                    }
+                    _ => false,
+                };
+            }
         }
         let name = Self::ALIASES
             .iter()
