@@ -394,6 +394,28 @@ mod tests {
         });
     }
 
+    /// A sparse twin of an output that is zero at every state writes nothing and names its
+    /// `out` `_out`: read by nothing, `out` would warn in code the CLI writes out.
+    #[test]
+    fn a_sparse_twin_with_nothing_to_write_leaves_out_unread() {
+        let text = expand_mechanism(quote! {
+            pub struct Floater;
+            gravity: [0.0, 0.0, 0.0];
+            outputs: [gravity_sparse_into, mass_matrix_sparse_into];
+            body a { mass: 1.0, com: [0.1, 0.0, 0.0], shape: point }
+            joint j: revolute(ground -> a) { axis: z }
+        })
+        .to_string();
+        let text: String = text.split_whitespace().collect();
+        assert!(
+            text.contains(
+                "fngravity_sparse_into<T:::dynamics_runtime::Scalar>(_q:&[T;1],_out:&mut[T;1]){}"
+            ),
+            "{text}"
+        );
+        assert!(text.contains("(*out)[0][0]="), "{text}");
+    }
+
     /// A graph past its budget takes no new operation: it hands back the constant 0 and
     /// says it is exhausted; leaves are still taken.
     #[test]

@@ -450,6 +450,16 @@ pub(crate) fn function_into(
     };
     let docs = doc_attrs(&link, &count, &spec.output);
     let params = function_params(&ops, spec, plan);
+    if places.is_empty() {
+        // A sparse twin of an output that is zero whatever the state (gravity without
+        // gravity): nothing to write, and `out` unused.
+        let allows = generated_allows();
+        return quote! {
+            #(#docs)*
+            #allows
+            #vis fn #name_into<T: #trait_>(#(#params,)* _out: &mut #ret) {}
+        };
+    }
     let body = if plan.pieces.len() > 1 {
         plan.chained_pieces_into(&ops, spec, &places)
     } else {
