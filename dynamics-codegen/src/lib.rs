@@ -236,17 +236,20 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
     let functions = compiled.functions.iter().map(|f| {
         let fused = passes::fusion::fuse(&f.graph, &f.spec.output);
         let name = f.spec.name.to_string();
-        let into = compiled.model.outputs.wants_into(&name).then(|| {
-            let plan = schedule::Plan::handing_back(&f.graph, &f.spec, fused.clone());
-            print::function_into(&f.graph, &f.spec, &plan, print::Writes::Every)
-        });
-        let sparse_into = compiled.model.outputs.wants_sparse_into(&name).then(|| {
-            let writes = print::Writes::Sparse {
-                upper_triangle: functions::is_symmetric(&name),
-            };
+        // The `_into` and `_sparse_into` twins: the same printer over the nodes each writes.
+        let twin = |writes: print::Writes| {
             let written = print::written_nodes(&f.graph, &f.spec.output, writes);
             let plan = schedule::Plan::writing(&f.graph, &f.spec, fused.clone(), &written);
             print::function_into(&f.graph, &f.spec, &plan, writes)
+        };
+        let outputs = &compiled.model.outputs;
+        let into = outputs
+            .wants_into(&name)
+            .then(|| twin(print::Writes::Every));
+        let sparse_into = outputs.wants_sparse_into(&name).then(|| {
+            twin(print::Writes::Sparse {
+                upper_triangle: functions::is_symmetric(&name),
+            })
         });
         let plan = schedule::Plan::new(&f.graph, &f.spec, fused);
         let function = print::function(&f.graph, &f.spec, &plan);

@@ -398,7 +398,7 @@ pub(crate) enum Writes {
 /// written as soon as it is computed, so that the result is neither held until the end
 /// nor copied out (for the quadruped's 18 × 18 mass matrix 0.74 of the time in `f64`,
 /// 0.61 on `F64x4`). Cut into pieces, each piece writes the outputs it computes (the plan
-/// hands them back, [`Plan::handing_back`]) and the function the outputs that are leaves.
+/// hands them back, [`Plan::writing`]) and the function the outputs that are leaves.
 /// A function finished by a solve loop writes its right-hand sides into `out` and solves
 /// them there, in place. With [`Writes::Sparse`], the `<name>_sparse_into` twin, which
 /// writes only some entries: its plan is [`Plan::writing`] over [`written_nodes`].

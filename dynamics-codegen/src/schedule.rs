@@ -153,20 +153,11 @@ impl Plan {
         Self::build(graph, spec, fused, &spec.output.nodes(), false)
     }
 
-    /// [`Plan::new`] for a `_into` function, which writes each output where it is computed:
-    /// cut into pieces, it hands every output back ([`Plan::hands_back`]) instead of
-    /// carrying them to the last piece.
-    pub(crate) fn handing_back(
-        graph: &Graph,
-        spec: &FunctionSpec,
-        fused: HashMap<Node, Fused>,
-    ) -> Self {
-        Self::build(graph, spec, fused, &spec.output.nodes(), true)
-    }
-
-    /// [`Plan::handing_back`] for a `_sparse_into` function, which writes only the output
-    /// nodes `written` (the rest of the output is not computed for it, and a constant
-    /// output not written is not defined).
+    /// [`Plan::new`] for a `_into` or `_sparse_into` function, which writes each output
+    /// node of `written` where it is computed (every node of the output for `_into`; for
+    /// `_sparse_into` the rest is not computed for it, and a constant output not written is
+    /// not defined): cut into pieces, it hands every output back ([`Plan::hands_back`])
+    /// instead of carrying them to the last piece.
     pub(crate) fn writing(
         graph: &Graph,
         spec: &FunctionSpec,

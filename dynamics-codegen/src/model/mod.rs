@@ -220,18 +220,11 @@ impl Outputs {
     /// function's name with `_into` (`mass_matrix_into`) turns it on with its `_into` twin,
     /// with `_sparse_into` with its `_sparse_into` twin.
     pub fn enable(&mut self, name: &str) -> bool {
-        // The index in `NAMES` of an output name or alias.
-        let twin = |stem: &str| {
-            let stem = Self::ALIASES
-                .iter()
-                .find(|(alias, _)| *alias == stem)
-                .map_or(stem, |(_, full)| full);
-            Self::NAMES.iter().position(|n| *n == stem)
-        };
         // `_sparse_into` first: it ends with `_into` too.
         for (suffix, sparse) in [("_sparse_into", true), ("_into", false)] {
             if let Some(stem) = name.strip_suffix(suffix) {
-                return match twin(stem) {
+                let stem = Self::full_name(stem);
+                return match Self::NAMES.iter().position(|n| *n == stem) {
                     Some(i) if self.enable(Self::NAMES[i]) => {
                         let bits = if sparse {
                             &mut self.sparse_into
@@ -245,11 +238,7 @@ impl Outputs {
                 };
             }
         }
-        let name = Self::ALIASES
-            .iter()
-            .find(|(alias, _)| *alias == name)
-            .map_or(name, |(_, full)| full);
-        let flag = match name {
+        let flag = match Self::full_name(name) {
             "inverse_dynamics" => &mut self.inverse_dynamics,
             "mass_matrix" => &mut self.mass_matrix,
             "coriolis_matrix" => &mut self.coriolis,
@@ -292,20 +281,31 @@ impl Outputs {
         true
     }
 
-    /// Whether the function `name` was asked for with `_into`.
-    pub fn wants_into(&self, name: &str) -> bool {
+    /// The output an alias stands for (`coriolis` → `coriolis_matrix`), else `name`.
+    fn full_name(name: &str) -> &str {
+        Self::ALIASES
+            .iter()
+            .find(|(alias, _)| *alias == name)
+            .map_or(name, |(_, full)| full)
+    }
+
+    /// Whether the function `name` has its bit in `bits` ([`Outputs::into`],
+    /// [`Outputs::sparse_into`]).
+    fn asked(bits: u64, name: &str) -> bool {
         Self::NAMES
             .iter()
             .position(|n| *n == name)
-            .is_some_and(|i| self.into & (1 << i) != 0)
+            .is_some_and(|i| bits & (1 << i) != 0)
+    }
+
+    /// Whether the function `name` was asked for with `_into`.
+    pub fn wants_into(&self, name: &str) -> bool {
+        Self::asked(self.into, name)
     }
 
     /// Whether the function `name` was asked for with `_sparse_into`.
     pub fn wants_sparse_into(&self, name: &str) -> bool {
-        Self::NAMES
-            .iter()
-            .position(|n| *n == name)
-            .is_some_and(|i| self.sparse_into & (1 << i) != 0)
+        Self::asked(self.sparse_into, name)
     }
 
     /// Whether any output needs at least one degree of freedom.
