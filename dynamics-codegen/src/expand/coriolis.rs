@@ -159,7 +159,7 @@ pub(crate) fn composite_terms(
 
 /// The composite terms of C over `slots`, from the slots' transforms and inertias (indexed
 /// by slot).
-fn slot_composite_terms(
+pub(crate) fn slot_composite_terms(
     g: &Graph,
     model: &Model,
     slots: &Slots,
@@ -303,41 +303,12 @@ fn by_slots(
 #[cfg(test)]
 mod tests {
     use super::{coriolis_matrix, coriolis_matrix_packed};
-    use crate::expand::{fresh_graph, inputs, slots::Slots};
+    use crate::expand::{
+        fresh_graph, inputs,
+        slots::Slots,
+        tests::{humanoid, state},
+    };
     use crate::sym::Array;
-    use quote::quote;
-
-    /// A small humanoid: legs in a pair off the pelvis (two lanes), a waist chain of single
-    /// joints (whose columns meet and travel packed), arms in a pair off the chest.
-    fn humanoid() -> crate::model::Model {
-        let tokens = quote! {
-            struct Humanoid;
-            body pelvis { mass: 3.0, inertia: diag([0.03, 0.02, 0.025]) }
-            joint base: free(ground -> pelvis);
-            body thigh_l { mass: 1.1, com: [0.0, 0.01, -0.12], inertia: diag([0.012, 0.011, 0.002]) }
-            body shin_l { mass: 0.6, com: [0.0, 0.0, -0.15], inertia: diag([0.008, 0.008, 0.001]) }
-            joint hip_l: revolute(pelvis -> thigh_l) { axis: y, at: [0.0, 0.09, -0.05] }
-            joint knee_l: revolute(thigh_l -> shin_l) { axis: y, at: [0.0, 0.0, -0.3] }
-            body thigh_r { mass: 1.1, com: [0.0, -0.01, -0.12], inertia: diag([0.012, 0.011, 0.002]) }
-            body shin_r { mass: 0.6, com: [0.0, 0.0, -0.15], inertia: diag([0.008, 0.008, 0.001]) }
-            joint hip_r: revolute(pelvis -> thigh_r) { axis: y, at: [0.0, -0.09, -0.05] }
-            joint knee_r: revolute(thigh_r -> shin_r) { axis: y, at: [0.0, 0.0, -0.3] }
-            body waist { mass: 0.4, com: [0.0, 0.0, 0.03], inertia: diag([0.001, 0.001, 0.0008]) }
-            body chest { mass: 2.2, com: [0.01, 0.0, 0.15], inertia: diag([0.04, 0.03, 0.02]) }
-            joint waist_yaw: revolute(pelvis -> waist) { axis: z, at: [0.0, 0.0, 0.1] }
-            joint waist_pitch: revolute(waist -> chest) { axis: y, at: [0.0, 0.0, 0.05] }
-            body arm_l { mass: 0.5, com: [0.0, 0.02, -0.1], inertia: diag([0.003, 0.003, 0.0005]) }
-            body forearm_l { mass: 0.3, com: [0.0, 0.0, -0.1], inertia: diag([0.002, 0.002, 0.0003]) }
-            joint shoulder_l: revolute(chest -> arm_l) { axis: x, at: [0.0, 0.15, 0.3] }
-            joint elbow_l: revolute(arm_l -> forearm_l) { axis: y, at: [0.0, 0.0, -0.22] }
-            body arm_r { mass: 0.5, com: [0.0, -0.02, -0.1], inertia: diag([0.003, 0.003, 0.0005]) }
-            body forearm_r { mass: 0.3, com: [0.0, 0.0, -0.1], inertia: diag([0.002, 0.002, 0.0003]) }
-            joint shoulder_r: revolute(chest -> arm_r) { axis: x, at: [0.0, -0.15, 0.3] }
-            joint elbow_r: revolute(arm_r -> forearm_r) { axis: y, at: [0.0, 0.0, -0.22] }
-        };
-        let mechanism: crate::syntax::Mechanism = syn::parse2(tokens).expect("parses");
-        crate::model::lower(&mechanism).expect("valid")
-    }
 
     /// The packed C (limbs in pairs of lanes, the waist's single columns and the arms'
     /// pairs packed again where they meet) is the column-by-column C entry for entry, and
@@ -362,19 +333,8 @@ mod tests {
         let count = g.op_count(&packed);
         assert!(2 * count.packed > count.total(), "{count}");
         assert!(count.total() < g.op_count(&scalar).total(), "{count}");
-        let mut q: Vec<f64> = (0..model.nq)
-            .map(|k| (0.61 * k as f64 + 0.2).sin())
-            .collect();
-        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-        q[3..7].iter_mut().for_each(|x| *x /= norm);
-        let rates: Vec<f64> = (0..model.nv)
-            .map(|k| (1.3 * k as f64).cos() * 2.0)
-            .collect();
-        let value = |r: crate::sym::InputRef| match r.array {
-            Array::Q => q[r.index as usize],
-            _ => rates[r.index as usize],
-        };
-        let (want, got) = (g.eval(value, &scalar), g.eval(value, &packed));
+        let value = state(&model);
+        let (want, got) = (g.eval(&value, &scalar), g.eval(&value, &packed));
         for (k, (w, x)) in want.iter().zip(&got).enumerate() {
             let (row, col) = (k / model.nv, k % model.nv);
             assert!(

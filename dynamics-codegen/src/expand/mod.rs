@@ -21,7 +21,7 @@
 //! | [`kinematics`] | body poses, point Jacobians, the centre of mass, its Jacobian, the centroidal momentum matrix and its rate |
 //! | [`derivatives`] | forward-mode derivatives of an expanded function with respect to q (tangent space), v, a or τ |
 //! | [`free_joint_derivatives`] | a free joint's columns of ∂τ/∂q̇ and ∂τ/∂q from M and C |
-//! | [`rnea_derivatives`] | ∂τ/∂q by the analytical recursion over the Coriolis matrix's composite terms |
+//! | [`rnea_derivatives`] | ∂τ/∂q by the analytical recursion over the Coriolis matrix's composite terms (body by body, or by slots, packed) |
 //! | [`frames`] | operational frames: poses, Jacobians (world-aligned and local), J̇ q̇ |
 //! | [`statics`] | the balance equations of the force analysis and the loop closures |
 //! | [`qr`] | a Givens QR solve for the force analysis |
@@ -69,4 +69,62 @@ pub(crate) fn fresh_graph(
 /// The first `n` elements of the input array `array`.
 pub(crate) fn inputs(g: &Graph, array: Array, n: usize) -> Vec<Node> {
     (0..n).map(|k| g.input(array, k)).collect()
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use quote::quote;
+
+    /// A small humanoid: legs in a pair off the pelvis (two lanes), a waist chain of single
+    /// joints (whose columns meet and travel packed), arms in a pair off the chest.
+    pub(crate) fn humanoid() -> crate::model::Model {
+        let tokens = quote! {
+            struct Humanoid;
+            body pelvis { mass: 3.0, inertia: diag([0.03, 0.02, 0.025]) }
+            joint base: free(ground -> pelvis);
+            body thigh_l { mass: 1.1, com: [0.0, 0.01, -0.12], inertia: diag([0.012, 0.011, 0.002]) }
+            body shin_l { mass: 0.6, com: [0.0, 0.0, -0.15], inertia: diag([0.008, 0.008, 0.001]) }
+            joint hip_l: revolute(pelvis -> thigh_l) { axis: y, at: [0.0, 0.09, -0.05] }
+            joint knee_l: revolute(thigh_l -> shin_l) { axis: y, at: [0.0, 0.0, -0.3] }
+            body thigh_r { mass: 1.1, com: [0.0, -0.01, -0.12], inertia: diag([0.012, 0.011, 0.002]) }
+            body shin_r { mass: 0.6, com: [0.0, 0.0, -0.15], inertia: diag([0.008, 0.008, 0.001]) }
+            joint hip_r: revolute(pelvis -> thigh_r) { axis: y, at: [0.0, -0.09, -0.05] }
+            joint knee_r: revolute(thigh_r -> shin_r) { axis: y, at: [0.0, 0.0, -0.3] }
+            body waist { mass: 0.4, com: [0.0, 0.0, 0.03], inertia: diag([0.001, 0.001, 0.0008]) }
+            body chest { mass: 2.2, com: [0.01, 0.0, 0.15], inertia: diag([0.04, 0.03, 0.02]) }
+            joint waist_yaw: revolute(pelvis -> waist) { axis: z, at: [0.0, 0.0, 0.1] }
+            joint waist_pitch: revolute(waist -> chest) { axis: y, at: [0.0, 0.0, 0.05] }
+            body arm_l { mass: 0.5, com: [0.0, 0.02, -0.1], inertia: diag([0.003, 0.003, 0.0005]) }
+            body forearm_l { mass: 0.3, com: [0.0, 0.0, -0.1], inertia: diag([0.002, 0.002, 0.0003]) }
+            joint shoulder_l: revolute(chest -> arm_l) { axis: x, at: [0.0, 0.15, 0.3] }
+            joint elbow_l: revolute(arm_l -> forearm_l) { axis: y, at: [0.0, 0.0, -0.22] }
+            body arm_r { mass: 0.5, com: [0.0, -0.02, -0.1], inertia: diag([0.003, 0.003, 0.0005]) }
+            body forearm_r { mass: 0.3, com: [0.0, 0.0, -0.1], inertia: diag([0.002, 0.002, 0.0003]) }
+            joint shoulder_r: revolute(chest -> arm_r) { axis: x, at: [0.0, -0.15, 0.3] }
+            joint elbow_r: revolute(arm_r -> forearm_r) { axis: y, at: [0.0, 0.0, -0.22] }
+        };
+        let mechanism: crate::syntax::Mechanism = syn::parse2(tokens).expect("parses");
+        crate::model::lower(&mechanism).expect("valid")
+    }
+
+    /// A state of `model` (a free root's quaternion normalized): q, and q̇ and q̈ of a few
+    /// radians a second (squared).
+    pub(crate) fn state(model: &crate::model::Model) -> impl Fn(crate::sym::InputRef) -> f64 {
+        let mut q: Vec<f64> = (0..model.nq)
+            .map(|k| (0.61 * k as f64 + 0.2).sin())
+            .collect();
+        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        let rates: Vec<f64> = (0..model.nv)
+            .map(|k| (1.3 * k as f64).cos() * 2.0)
+            .collect();
+        let accelerations: Vec<f64> = (0..model.nv)
+            .map(|k| (0.7 * k as f64 + 0.3).sin() * 3.0)
+            .collect();
+        move |r| match r.array {
+            crate::sym::Array::Q => q[r.index as usize],
+            crate::sym::Array::A => accelerations[r.index as usize],
+            _ => rates[r.index as usize],
+        }
+    }
 }

@@ -346,7 +346,7 @@ pub fn motions(
 }
 
 /// One step of the forward sweep: the body's motion from its parent's.
-fn forward(
+pub(crate) fn forward(
     g: &Graph,
     joint: &crate::model::Joint,
     t: &JointTransform,

@@ -31,13 +31,22 @@
 //! ([`super::free_joint_derivatives`]; its twist columns are not derivatives of
 //! coordinates). Applied loads are not rigid with their body when given in world axes, so a
 //! mechanism with loads keeps forward mode.
+//!
+//! [`configuration_jacobian`] runs one body at a time, all values scalar;
+//! [`configuration_jacobian_packed`] runs over [`Slots`] (isomorphic limbs side by side in
+//! the lanes of packed values) and carries each column's three wrenches I^C_j s_j,
+//! B^C_jᵀ s_j and G_j up packed four to a value where partly filled ones meet, as the
+//! packed Coriolis matrix does: the first two are the Coriolis matrix's own carried
+//! wrenches, shared with ∂τ/∂q̇ = 2 C + diag(b) built in the same graph.
 
-use super::coriolis::CompositeTerms;
+use super::coriolis::{self, CompositeTerms};
 use super::geometry::{self, BodyInertia, JointTransform};
-use super::rnea::{self, SweepInputs};
+use super::rnea::{self, BodyMotion, SweepInputs};
+use super::slot_columns::{pack_columns, CarriedColumns};
+use super::slots::{padded, Slots};
 use super::spatial::{add6, dot6, force_cross, inertia_times, motion_cross, scale6, Six};
 use crate::model::{JointKind, Model};
-use crate::sym::{Graph, Node};
+use crate::sym::{Graph, Node, Vec3};
 
 /// Whether the recursion applies: no loads, and a free joint only on the ground.
 pub fn applies(model: &Model) -> bool {
@@ -145,4 +154,197 @@ pub fn configuration_jacobian(
         }
     }
     jacobian
+}
+
+/// [`configuration_jacobian`] over [`Slots`], the composite terms and the Newton–Euler
+/// sweep packed lane by lane, the columns' wrenches [I^C_j s_j, B^C_jᵀ s_j, G_j] carried
+/// up as the packed Coriolis matrix carries its own (module doc). A free joint's columns
+/// are left zero for the caller.
+pub fn configuration_jacobian_packed(
+    g: &Graph,
+    model: &Model,
+    (transforms, inertias): (&[JointTransform], &[BodyInertia]),
+    (velocity, acceleration): (&[Node], &[Node]),
+) -> Vec<Vec<Node>> {
+    let slots = Slots::of(model);
+    let transforms = slots.transforms(g, transforms);
+    let inertias = slots.inertias(g, inertias);
+    let terms = coriolis::slot_composite_terms(g, model, &slots, &transforms, &inertias, velocity);
+    let sweep = slot_sweep(
+        g,
+        model,
+        &slots,
+        (&transforms, &inertias),
+        (velocity, acceleration),
+    );
+    let two = g.constant(2.0);
+    let mut jacobian = vec![vec![g.zero(); model.nv]; model.nv];
+    let mut arriving: Vec<Vec<CarriedColumns>> = slots.slots.iter().map(|_| Vec::new()).collect();
+    for s in (0..slots.slots.len()).rev() {
+        let slot = &slots.slots[s];
+        let row_of = |k: usize, row_in_joint: usize| {
+            model.bodies[*padded(&slot.lanes, k)].joint.idx_v + row_in_joint
+        };
+        // (Ψ̇, Ψ̈) of the slot's joints, Ψ̈ = a × s + v × Ψ̇, a = [a_P − ω × v_P; α] the
+        // spatial acceleration (gravity included).
+        let psi = (model.bodies[slot.lanes[0]].joint.kind != JointKind::Free).then(|| {
+            let (motion, twist) = (&sweep[s].0, terms.twists[s]);
+            let spatial = (motion.accel.sub(g, twist.1.cross(g, twist.0)), motion.alpha);
+            let psi_dot = terms.axis_rates[s][0];
+            let psi_ddot = add6(
+                g,
+                motion_cross(g, spatial, terms.subspaces[s][0]),
+                motion_cross(g, terms.twists[s], psi_dot),
+            );
+            (psi_dot, psi_ddot)
+        });
+        // The columns of the joints below: ∂τ_i/∂q_j = s_i · G_j in this slot's rows i,
+        // ∂τ_j/∂q_i = (I^C_j s_j)·Ψ̈_i + 2 (B^C_jᵀ s_j)·Ψ̇_i in their rows j.
+        let mut carried = std::mem::take(&mut arriving[s]);
+        for column in &carried {
+            let [inertia_s, bt_s, g_j] = [0, 1, 2].map(|w| column.wrenches[w]);
+            for (r, &s_i) in terms.subspaces[s].iter().enumerate() {
+                let entry = dot6(g, s_i, g_j);
+                for (k, &col) in column.columns.iter().enumerate() {
+                    jacobian[row_of(k, r)][col] = g.lane(entry, k);
+                }
+            }
+            if let Some((psi_dot, psi_ddot)) = psi {
+                let entry = rows_entry(g, (inertia_s, bt_s), (psi_dot, psi_ddot));
+                for (k, &row) in column.columns.iter().enumerate() {
+                    jacobian[row][row_of(k, 0)] = g.lane(entry, k);
+                }
+            }
+        }
+        // The slot's own columns: their diagonal entries, and their wrenches to carry.
+        if let Some((psi_dot, psi_ddot)) = psi {
+            let s_j = terms.subspaces[s][0];
+            let composite = &terms.inertia_composite[s];
+            let inertia_s = inertia_times(g, composite, s_j);
+            let bt_s = terms.b_times(g, s, s_j).1;
+            let diagonal = rows_entry(g, (inertia_s, bt_s), (psi_dot, psi_ddot));
+            let g_j = add6(
+                g,
+                force_cross(g, s_j, sweep[s].1),
+                add6(
+                    g,
+                    inertia_times(g, composite, psi_ddot),
+                    scale6(g, terms.b_times(g, s, psi_dot).0, two),
+                ),
+            );
+            let columns: Vec<usize> = (0..slot.lanes.len()).map(|k| row_of(k, 0)).collect();
+            for (k, &j) in columns.iter().enumerate() {
+                jacobian[j][j] = g.lane(diagonal, k);
+            }
+            carried.push(CarriedColumns {
+                wrenches: vec![inertia_s, bt_s, g_j],
+                columns,
+            });
+        }
+        if let Some(p) = slots.parent_slot(s) {
+            if slot.lanes.len() == 1 {
+                carried = pack_columns(g, carried);
+            }
+            for column in carried {
+                arriving[p].push(column.moved_to_parent(g, &transforms[s]));
+            }
+        }
+    }
+    jacobian
+}
+
+/// ∂τ_j/∂q_i = (I^C_j s_j)·Ψ̈_i + 2 (B^C_jᵀ s_j)·Ψ̇_i, j = i or below i.
+fn rows_entry(g: &Graph, (inertia_s, bt_s): (Six, Six), (psi_dot, psi_ddot): (Six, Six)) -> Node {
+    let half = dot6(g, bt_s, psi_dot);
+    g.add(dot6(g, inertia_s, psi_ddot), g.add(half, half))
+}
+
+/// The Newton–Euler sweeps over `slots` (lane k of each value is the slot's lane-k body):
+/// each slot's motion (gravity as the base's −g) and the wrench f its joints transmit,
+/// [F; M_P] in the body frames.
+fn slot_sweep(
+    g: &Graph,
+    model: &Model,
+    slots: &Slots,
+    (transforms, inertias): (&[JointTransform], &[BodyInertia]),
+    (velocity, acceleration): (&[Node], &[Node]),
+) -> Vec<(BodyMotion, Six)> {
+    let gravity = Vec3::constant(g, model.gravity_in_world).neg(g);
+    let base = BodyMotion::new(g, Vec3::zero(g), Vec3::zero(g), gravity);
+    let mut motions: Vec<BodyMotion> = Vec::with_capacity(slots.slots.len());
+    for (s, slot) in slots.slots.iter().enumerate() {
+        let joint = &model.bodies[slot.lanes[0]].joint;
+        // The inputs with lane 0's joint's entries the slot's lanes' zipped.
+        let zipped = |values: &[Node]| {
+            let mut out = values.to_vec();
+            for d in 0..joint.kind.dofs() {
+                out[joint.idx_v + d] =
+                    slots.zip_lanes(g, s, |b| values[model.bodies[b].joint.idx_v + d]);
+            }
+            out
+        };
+        let (velocity, acceleration) = (zipped(velocity), zipped(acceleration));
+        let inputs = SweepInputs {
+            velocity: &velocity,
+            acceleration: &acceleration,
+            gravity: true,
+            loads: false,
+        };
+        let parent = slots.parent_slot(s).map_or(base, |p| motions[p]);
+        motions.push(rnea::forward(g, joint, &transforms[s], parent, &inputs));
+    }
+    let mut wrenches: Vec<Six> = motions
+        .iter()
+        .zip(inertias)
+        .map(|(motion, inertia)| rnea::body_wrench(g, motion, inertia))
+        .collect();
+    for s in (0..slots.slots.len()).rev() {
+        if let Some(p) = slots.parent_slot(s) {
+            let (f, m) = wrenches[s];
+            let moved = geometry::wrench_to_parent(g, &transforms[s], f, m);
+            for k in slots.lanes_into_parent(s) {
+                let lane = |x: Vec3| k.map_or(x, |k| x.lane(g, k));
+                wrenches[p] = add6(g, wrenches[p], (lane(moved.0), lane(moved.1)));
+            }
+        }
+    }
+    motions.into_iter().zip(wrenches).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{configuration_jacobian, configuration_jacobian_packed};
+    use crate::expand::coriolis::composite_terms;
+    use crate::expand::tests::{humanoid, state};
+    use crate::expand::{fresh_graph, inputs};
+    use crate::sym::Array;
+
+    /// The packed recursion (legs and arms in pairs of lanes, the waist's columns packed
+    /// again where they meet) is the body-by-body one entry for entry, in fewer operations.
+    #[test]
+    fn the_packed_recursion_is_the_scalar_one() {
+        let model = humanoid();
+        let (g, t, i) = fresh_graph(&model);
+        let (v, a) = (
+            inputs(&g, Array::V, model.nv),
+            inputs(&g, Array::A, model.nv),
+        );
+        let terms = composite_terms(&g, &model, &t, &i, &v);
+        let scalar = configuration_jacobian(&g, &model, (&t, &i), &terms, (&v, &a)).concat();
+        let packed = configuration_jacobian_packed(&g, &model, (&t, &i), (&v, &a)).concat();
+        let count = g.op_count(&packed);
+        assert!(2 * count.packed > count.total(), "{count}");
+        assert!(count.total() < g.op_count(&scalar).total(), "{count}");
+        let value = state(&model);
+        let (want, got) = (g.eval(&value, &scalar), g.eval(&value, &packed));
+        for (k, (w, x)) in want.iter().zip(&got).enumerate() {
+            let (row, col) = (k / model.nv, k % model.nv);
+            assert!(
+                (w - x).abs() < 1e-12 * (1.0 + w.abs()),
+                "∂τ[{row}]/∂q[{col}]: {x} packed, {w} not"
+            );
+        }
+        // Every joint column (the free root's six are the caller's) has entries.
+        assert!(want.iter().filter(|w| w.abs() > 1e-6).count() > 2 * model.nv);
+    }
 }

@@ -52,8 +52,11 @@ enum VelocityColumns {
     /// ([`free_joint_derivatives`]).
     Coriolis,
     /// As `Coriolis`, and ∂τ/∂q's other columns by the analytical recursion over C's
-    /// composite terms ([`rnea_derivatives`]) where it applies (forward mode otherwise).
-    Analytic,
+    /// composite terms ([`rnea_derivatives`]) where it applies (forward mode otherwise);
+    /// `packed`: both over isomorphic limbs side by side, C by
+    /// [`coriolis::coriolis_matrix_packed`] and ∂τ/∂q by
+    /// [`rnea_derivatives::configuration_jacobian_packed`].
+    Analytic { packed: bool },
 }
 
 /// The ways ∂τ/∂q̇ (and with it ∂τ/∂q) can be expanded for `model`: forward mode, from the
@@ -62,7 +65,8 @@ enum VelocityColumns {
 fn velocity_columns(model: &Model) -> Vec<VelocityColumns> {
     let mut ways = vec![VelocityColumns::ForwardMode, VelocityColumns::Coriolis];
     if rnea_derivatives::applies(model) {
-        ways.push(VelocityColumns::Analytic);
+        ways.push(VelocityColumns::Analytic { packed: false });
+        ways.push(VelocityColumns::Analytic { packed: true });
     }
     ways
 }
@@ -81,10 +85,14 @@ fn velocity_jacobian_by_coriolis(
     model: &Model,
     (transforms, inertias): (&[JointTransform], &[BodyInertia]),
     v: &[Node],
-    basis: &CoriolisBasis,
+    (basis, packed): (&CoriolisBasis, bool),
 ) -> Vec<Vec<Node>> {
     let c_inertias = basis.get_or_init(|| coriolis_inertias(g, model, (transforms, inertias), v));
-    let c = coriolis::coriolis_matrix(g, model, transforms, c_inertias, v);
+    let c = if packed {
+        coriolis::coriolis_matrix_packed(g, model, transforms, c_inertias, v)
+    } else {
+        coriolis::coriolis_matrix(g, model, transforms, c_inertias, v)
+    };
     let two = g.constant(2.0);
     let mut jacobian: Vec<Vec<Node>> = c
         .iter()
@@ -147,25 +155,28 @@ fn configuration_jacobian_with_free_columns(
     jacobian
 }
 
-/// ∂τ/∂q by the analytical recursion ([`rnea_derivatives`]) over C's base parameters, a
-/// free joint's columns from M; by [`configuration_jacobian_with_free_columns`] where the
-/// recursion does not apply (loads).
+/// ∂τ/∂q by the analytical recursion ([`rnea_derivatives`]) over C's base parameters,
+/// `packed` over isomorphic limbs side by side, a free joint's columns from M; by
+/// [`configuration_jacobian_with_free_columns`] where the recursion does not apply (loads).
 fn configuration_jacobian_analytic(
     g: &Graph,
     model: &Model,
     expansion: (&[JointTransform], &[BodyInertia]),
     (tau, v): (&[Node], &[Node]),
-    basis: &CoriolisBasis,
+    (basis, packed): (&CoriolisBasis, bool),
 ) -> Vec<Vec<Node>> {
     if !rnea_derivatives::applies(model) {
         return configuration_jacobian_with_free_columns(g, model, expansion, tau);
     }
     let transforms = expansion.0;
     let inertias = basis.get_or_init(|| coriolis_inertias(g, model, expansion, v));
-    let terms = coriolis::composite_terms(g, model, transforms, inertias, v);
     let a = inputs(g, Array::A, model.nv);
-    let mut jacobian =
-        rnea_derivatives::configuration_jacobian(g, model, (transforms, inertias), &terms, (v, &a));
+    let mut jacobian = if packed {
+        rnea_derivatives::configuration_jacobian_packed(g, model, (transforms, inertias), (v, &a))
+    } else {
+        let terms = coriolis::composite_terms(g, model, transforms, inertias, v);
+        rnea_derivatives::configuration_jacobian(g, model, (transforms, inertias), &terms, (v, &a))
+    };
     fill_free_configuration_columns(g, model, expansion, &mut jacobian);
     jacobian
 }
@@ -209,14 +220,17 @@ fn inverse_dynamics_jacobian(
     basis: &CoriolisBasis,
 ) -> Vec<Vec<Node>> {
     match (with, velocity) {
-        (With::Array(Array::V), VelocityColumns::Coriolis | VelocityColumns::Analytic) => {
-            velocity_jacobian_by_coriolis(g, model, expansion, v, basis)
+        (With::Array(Array::V), VelocityColumns::Coriolis) => {
+            velocity_jacobian_by_coriolis(g, model, expansion, v, (basis, false))
+        }
+        (With::Array(Array::V), VelocityColumns::Analytic { packed }) => {
+            velocity_jacobian_by_coriolis(g, model, expansion, v, (basis, packed))
         }
         (With::Configuration, VelocityColumns::Coriolis) => {
             configuration_jacobian_with_free_columns(g, model, expansion, tau)
         }
-        (With::Configuration, VelocityColumns::Analytic) => {
-            configuration_jacobian_analytic(g, model, expansion, (tau, v), basis)
+        (With::Configuration, VelocityColumns::Analytic { packed }) => {
+            configuration_jacobian_analytic(g, model, expansion, (tau, v), (basis, packed))
         }
         _ => derivatives::jacobian(g, model, tau, with),
     }
@@ -278,7 +292,7 @@ fn cheapest_inverse_dynamics_jacobians(model: &Model) -> (Graph, Output, Velocit
     let cost = |(g, output, way): &(Graph, Output, VelocityColumns)| {
         let cost = output_cost(g, output);
         match way {
-            VelocityColumns::Analytic => cost * 20 / 19,
+            VelocityColumns::Analytic { .. } => cost * 20 / 19,
             _ => cost,
         }
     };
@@ -301,10 +315,16 @@ pub(super) fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
                                       (C the Christoffel-consistent Coriolis matrix; a free \
                                       joint's columns from M and C)"
         }
-        VelocityColumns::Analytic => {
+        VelocityColumns::Analytic { packed: false } => {
             "the analytical Newton–Euler derivative recursion for ∂τ/∂q over the Coriolis \
              matrix's composite terms, and ∂τ/∂q̇ = 2 C(q, q̇) + diag(b) (C the \
              Christoffel-consistent Coriolis matrix; a free joint's columns from M and C)"
+        }
+        VelocityColumns::Analytic { packed: true } => {
+            "the analytical Newton–Euler derivative recursion for ∂τ/∂q over the Coriolis \
+             matrix's composite terms, and ∂τ/∂q̇ = 2 C(q, q̇) + diag(b) (C the \
+             Christoffel-consistent Coriolis matrix; a free joint's columns from M and C), \
+             isomorphic limbs computed side by side"
         }
     };
     Expanded {
@@ -352,7 +372,7 @@ pub(super) fn forward_dynamics_derivatives(model: &Model) -> Expanded {
                 "forward-mode derivatives of Newton–Euler for ∂τ/∂q, ∂τ/∂q̇ = 2 C(q, q̇) + diag(b), \
                  a free joint's columns from M and C"
             }
-            VelocityColumns::Analytic => {
+            VelocityColumns::Analytic { .. } => {
                 "the analytical derivative recursion of Newton–Euler for ∂τ/∂q, \
                  ∂τ/∂q̇ = 2 C(q, q̇) + diag(b), a free joint's columns from M and C"
             }
@@ -859,33 +879,39 @@ mod tests {
         }
     }
 
-    /// The analytical recursion's ∂τ/∂q takes the values forward mode gives, on a free base
-    /// carrying two branches ([`floating_branches`]) at a state with accelerations; and it
-    /// is what a spatial 7-link arm chooses, while loads keep forward mode.
+    /// The analytical recursion's ∂τ/∂q, body by body and packed, takes the values forward
+    /// mode gives, on a free base carrying two branches ([`floating_branches`]) at a state
+    /// with accelerations; and it is what a spatial 7-link arm chooses, while loads keep
+    /// forward mode.
     #[test]
     fn analytic_configuration_columns_are_forward_modes() {
         let model = floating_branches();
         assert!(rnea_derivatives::applies(&model));
         let (g, t, i) = fresh_graph(&model);
         let (tau, v) = inverse_dynamics_on(&g, &model, &t, &i);
-        let [forward, analytic] =
-            [VelocityColumns::ForwardMode, VelocityColumns::Analytic].map(|way| {
-                inverse_dynamics_jacobian(
-                    &g,
-                    &model,
-                    (&t, &i),
-                    (&tau, &v),
-                    (With::Configuration, way),
-                    &CoriolisBasis::new(),
-                )
-            });
-        let [forward, analytic] =
-            [forward, analytic].map(|rows| g.eval(sample_input, &rows.concat()));
-        for (k, (a, b)) in forward.iter().zip(&analytic).enumerate() {
-            assert!(
-                (a - b).abs() <= 1e-12 * (1.0 + a.abs()),
-                "∂τ/∂q entry {k}: forward mode {a}, analytical {b}"
+        let [forward, analytic, packed] = [
+            VelocityColumns::ForwardMode,
+            VelocityColumns::Analytic { packed: false },
+            VelocityColumns::Analytic { packed: true },
+        ]
+        .map(|way| {
+            let rows = inverse_dynamics_jacobian(
+                &g,
+                &model,
+                (&t, &i),
+                (&tau, &v),
+                (With::Configuration, way),
+                &CoriolisBasis::new(),
             );
+            g.eval(sample_input, &rows.concat())
+        });
+        for (k, a) in forward.iter().enumerate() {
+            for (way, b) in [("analytical", analytic[k]), ("packed", packed[k])] {
+                assert!(
+                    (a - b).abs() <= 1e-12 * (1.0 + a.abs()),
+                    "∂τ/∂q entry {k}: forward mode {a}, {way} {b}"
+                );
+            }
         }
         // Joint columns (not only the free base's) carry values.
         assert!((0..model.nv).any(|row| forward[row * model.nv + 7].abs() > 0.1));
