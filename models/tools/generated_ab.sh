@@ -12,7 +12,7 @@
 #
 # A public robot is one that `models/benches/pinocchio/public.sh --robots "<name>"` has
 # written (its URDF and its row in build/public/robots.tsv; nothing of it is committed):
-# declared as public.sh declares it, with the six timed outputs and M⁻¹, and printed `--whole`, as
+# declared as public.sh declares it, with the six timed outputs, M⁻¹ and ∂τ, and printed `--whole`, as
 # the macro expands it in an optimized build (both commits' compilers must know `--whole`).
 # For example, g1's code against itself, to see the harness's spread: A/A ratios within
 # 0.5 % (2026-11-29).
@@ -43,13 +43,13 @@ case $model in
         IFS=$'\t' read -r _ nq nv base urdf <<< "$row"
         if [ "$base" = free ]; then floating=true quaternion='Some(3)'; else floating=false quaternion=None; fi
         struct=Robot
-        call="paired::states::<$nq, $nv>($quaternion), none, inverse"
+        call="paired::states::<$nq, $nv>($quaternion), none, public"
         public="mechanism! {
     pub struct Robot;
     urdf: \"$urdf\";
     floating_base: $floating;
     outputs: [inverse_dynamics, mass_matrix, forward_dynamics, gravity, bias, coriolis_matrix,
-              mass_matrix_inverse];
+              mass_matrix_inverse, inverse_dynamics_derivatives];
 }" ;;
 esac
 

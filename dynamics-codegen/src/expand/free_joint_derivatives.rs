@@ -61,15 +61,21 @@ fn times_free_columns(
         .iter()
         .enumerate()
         .map(|(row, entries)| {
-            let mut sum = g.zero();
-            for (b, &ub) in u.iter().enumerate() {
-                let mut entry = entries[k + b];
-                if row == k + b {
-                    entry = g.sub(entry, armature);
-                }
-                sum = g.add(sum, g.mul(entry, ub));
-            }
-            sum
+            let free_columns: Vec<Node> = (k..k + 6)
+                .map(|col| {
+                    if row == col {
+                        g.sub(entries[col], armature)
+                    } else {
+                        entries[col]
+                    }
+                })
+                .collect();
+            // Rows read from the lanes of one pack share its packed sum.
+            g.lanewise(&free_columns, |m| {
+                m.iter()
+                    .zip(u)
+                    .fold(g.zero(), |sum, (&entry, ub)| g.add(sum, g.mul(entry, ub)))
+            })
         })
         .collect()
 }
@@ -100,7 +106,7 @@ pub fn velocity_column(
         .zip(correction)
         .enumerate()
         .map(|(row, (c, m))| {
-            let entry = g.add(g.mul(two, c[col]), m);
+            let entry = g.lanewise(&[c[col], m], |x| g.add(g.mul(two, x[0]), x[1]));
             if row == col {
                 g.add(entry, damping)
             } else {

@@ -25,7 +25,7 @@ use crate::expand::derivatives::{self, With};
 use crate::expand::geometry::{BodyInertia, JointTransform};
 use crate::expand::rnea::SweepInputs;
 use crate::expand::{
-    coriolis, free_joint_derivatives, fresh_graph, inputs, ldlt, rnea_derivatives,
+    coriolis, crba, free_joint_derivatives, fresh_graph, inputs, ldlt, rnea_derivatives,
 };
 use crate::ir::{Output, Sweeps, TreeSolve};
 use crate::model::{JointKind, LoadFrame, Model};
@@ -96,12 +96,16 @@ fn velocity_jacobian_by_coriolis(
     let two = g.constant(2.0);
     let mut jacobian: Vec<Vec<Node>> = c
         .iter()
-        .map(|row| row.iter().map(|&x| g.mul(two, x)).collect())
+        .map(|row| {
+            row.iter()
+                .map(|&x| g.lanewise(&[x], |x| g.mul(two, x[0])))
+                .collect()
+        })
         .collect();
     for body in &model.bodies {
         let k = body.joint.idx_v;
         if body.joint.kind == JointKind::Free {
-            let m = regrouped_mass_matrix(g, model, transforms, inertias, false);
+            let m = free_columns_mass_matrix(g, model, (transforms, inertias), v, (basis, packed));
             for twist in 0..6 {
                 let column =
                     free_joint_derivatives::velocity_column(g, &body.joint, (&m, &c), v, twist);
@@ -151,7 +155,9 @@ fn configuration_jacobian_with_free_columns(
     {
         return jacobian;
     }
-    fill_free_configuration_columns(g, model, expansion, &mut jacobian);
+    let mass =
+        || free_columns_mass_matrix(g, model, expansion, &[], (&CoriolisBasis::new(), false));
+    fill_free_configuration_columns(g, model, expansion.0, mass, &mut jacobian);
     jacobian
 }
 
@@ -177,23 +183,44 @@ fn configuration_jacobian_analytic(
         let terms = coriolis::composite_terms(g, model, transforms, inertias, v);
         rnea_derivatives::configuration_jacobian(g, model, (transforms, inertias), &terms, (v, &a))
     };
-    fill_free_configuration_columns(g, model, expansion, &mut jacobian);
+    let mass = || free_columns_mass_matrix(g, model, expansion, v, (basis, packed));
+    fill_free_configuration_columns(g, model, transforms, mass, &mut jacobian);
     jacobian
 }
 
-/// Writes the columns of ∂τ/∂q of a free joint on the ground from M
-/// ([`free_joint_derivatives::configuration_column`]; no loads in world axes).
+/// The mass matrix whose free-joint columns the derivatives use: over C's base parameters
+/// by [`crba::mass_matrix_packed`] when `packed` (its columns' wrenches are the ones the
+/// packed recursion carries, I^C_j s_j), else over its own, column by column.
+fn free_columns_mass_matrix(
+    g: &Graph,
+    model: &Model,
+    expansion: (&[JointTransform], &[BodyInertia]),
+    v: &[Node],
+    (basis, packed): (&CoriolisBasis, bool),
+) -> Vec<Vec<Node>> {
+    let (transforms, inertias) = expansion;
+    if packed {
+        let c_inertias = basis.get_or_init(|| coriolis_inertias(g, model, expansion, v));
+        crba::mass_matrix_packed(g, model, transforms, c_inertias)
+    } else {
+        regrouped_mass_matrix(g, model, transforms, inertias, false)
+    }
+}
+
+/// Writes the columns of ∂τ/∂q of a free joint on the ground from M (`mass`, built when
+/// there is one; [`free_joint_derivatives::configuration_column`]; no loads in world axes).
 fn fill_free_configuration_columns(
     g: &Graph,
     model: &Model,
-    (transforms, inertias): (&[JointTransform], &[BodyInertia]),
+    transforms: &[JointTransform],
+    mass: impl Fn() -> Vec<Vec<Node>>,
     jacobian: &mut [Vec<Node>],
 ) {
     for (body, transform) in model.bodies.iter().zip(transforms) {
         if body.joint.kind != JointKind::Free || body.parent.is_some() {
             continue;
         }
-        let m = regrouped_mass_matrix(g, model, transforms, inertias, false);
+        let m = mass();
         for k in 0..6 {
             let column = free_joint_derivatives::configuration_column(
                 g,

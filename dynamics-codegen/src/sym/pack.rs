@@ -55,6 +55,36 @@ impl Graph {
         }
     }
 
+    /// `f` of scalar `operands`, computed on the packs they are lanes of: where every
+    /// operand read from a pack is lane k of it (`Graph::lane`), lane k of `f` over the packs
+    /// (the other operands, scalars, taking part in every lane), so that the rows of a
+    /// matrix whose entries are the lanes of one pack share one packed evaluation of `f`;
+    /// otherwise `f` of the operands. `f` must treat its operands lane by lane (sums,
+    /// products): lane k of the packed value is then `f` of the operands, bit for bit.
+    pub fn lanewise(&self, operands: &[Node], f: impl Fn(&[Node]) -> Node) -> Node {
+        let lanes: Vec<(Node, u8)> = operands
+            .iter()
+            .filter_map(|&n| match self.op(n) {
+                Op::Lane(pack, k) => Some((pack, k)),
+                _ => None,
+            })
+            .collect();
+        let Some(&(_, k)) = lanes.first() else {
+            return f(operands);
+        };
+        if lanes.iter().any(|&(_, other)| other != k) {
+            return f(operands);
+        }
+        let packs: Vec<Node> = operands
+            .iter()
+            .map(|&n| match self.op(n) {
+                Op::Lane(pack, _) => pack,
+                _ => n,
+            })
+            .collect();
+        self.lane(f(&packs), usize::from(k))
+    }
+
     /// The four lanes' scalar expressions as one packed expression of the same shape: where
     /// the four apply the same operation, that operation on their zipped operands (the
     /// operands of a sum or product matched by kind, as the builders order them by id);
@@ -193,6 +223,32 @@ mod tests {
         for (k, &lane) in lanes.iter().enumerate() {
             let expected = g.eval(input, &[lane]);
             assert_eq!(g.eval(input, &[g.lane(zipped, k)]), expected);
+        }
+    }
+
+    /// Rows whose entries are lanes of the same packs share one packed evaluation: four
+    /// rows of Σ_b m_b u_b cost one packed product and sum, not four; an operand in another
+    /// lane falls back to the scalar expression. The values are the scalar expression's.
+    #[test]
+    fn rows_of_lanes_of_one_pack_share_a_packed_evaluation() {
+        let g = Graph::new();
+        // Computed packs (a pack's own lanes read back as its scalars, not as lanes).
+        let packs: [_; 2] = std::array::from_fn(|b| {
+            g.mul(g.pack(std::array::from_fn(|k| q(&g, 4 * b + k))), q(&g, 10))
+        });
+        let (u, w) = (q(&g, 8), q(&g, 9));
+        let sum = |m: &[crate::sym::Node]| g.add(g.mul(m[0], u), g.mul(m[1], w));
+        let rows: Vec<_> = (0..4)
+            .map(|k| g.lanewise(&[g.lane(packs[0], k), g.lane(packs[1], k)], sum))
+            .collect();
+        let ops = g.op_count(&rows);
+        assert_eq!((ops.total(), ops.packed), (5, 5), "two packs and Σ: {ops}");
+        let mixed = g.lanewise(&[g.lane(packs[0], 1), g.lane(packs[1], 2)], sum);
+        assert!(!g.is_packed(mixed) && !matches!(g.op(mixed), Op::Lane(..)));
+        let input = |r: InputRef| 0.5 + f64::from(r.index);
+        for (k, &row) in rows.iter().enumerate() {
+            let scalar = sum(&[g.mul(q(&g, k), q(&g, 10)), g.mul(q(&g, 4 + k), q(&g, 10))]);
+            assert_eq!(g.eval(input, &[row]), g.eval(input, &[scalar]));
         }
     }
 }

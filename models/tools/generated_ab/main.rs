@@ -39,11 +39,19 @@ macro_rules! call {
     };
 }
 
-/// The lines besides the six: none (`plain`), or M⁻¹ too (`inverse`, the public robots).
+/// The lines besides the six: none (`plain`), or M⁻¹ and ∂τ too (`public`, the public
+/// robots; ∂τ checked first).
 macro_rules! extra {
     (plain, $a:ty, $b:ty, $states:expr) => {};
-    (inverse, $a:ty, $b:ty, $states:expr) => {
+    (public, $a:ty, $b:ty, $states:expr) => {
         line("mass_matrix_inverse", $states, |s| <$a>::mass_matrix_inverse(&s.0), |s| <$b>::mass_matrix_inverse(&s.0));
+        for s in $states {
+            let (da, db) = (<$a>::inverse_dynamics_derivatives(&s.0, &s.1, &s.2), <$b>::inverse_dynamics_derivatives(&s.0, &s.1, &s.2));
+            for (x, y) in [(da.0, db.0), (da.1, db.1)] {
+                assert!(close(x.as_flattened(), y.as_flattened()), "A and B disagree on ∂τ");
+            }
+        }
+        line("inverse_dynamics_der", $states, |s| <$a>::inverse_dynamics_derivatives(&s.0, &s.1, &s.2), |s| <$b>::inverse_dynamics_derivatives(&s.0, &s.1, &s.2));
     };
 }
 
