@@ -448,6 +448,11 @@ pub(super) fn forward_dynamics_derivatives(model: &Model) -> Expanded {
     }
 }
 
+/// −x, on the pack `x` is a lane of where it is one (a packed ∂τ's rows share it).
+fn negated_entry(g: &Graph, x: Node) -> Node {
+    g.lanewise(&[x], |x| g.neg(x[0]))
+}
+
 /// (∂q̈/∂q, ∂q̈/∂q̇) = −M⁻¹ (∂τ/∂q, ∂τ/∂q̇), the derivatives of τ = ID(q, q̇, a) taken at a
 /// free `a` and evaluated at a = q̈ = FD(q, q̇, τ), in one graph both ways: solved column
 /// by column, and as the right-hand sides of one loop.
@@ -483,7 +488,7 @@ fn forward_dynamics_derivatives_by_chain_rule(
         let width = b.first().map_or(0, Vec::len);
         let columns: Vec<Vec<Node>> = (0..width)
             .map(|c| {
-                let column = b.iter().map(|row| g.neg(row[c])).collect();
+                let column = b.iter().map(|row| negated_entry(g, row[c])).collect();
                 ldlt::solve(g, model, m.clone(), column)
             })
             .collect();
@@ -504,7 +509,7 @@ fn forward_dynamics_derivatives_by_chain_rule(
     let (parents, factor, inverse_pivot) = ldlt::factor_rows(g, model, m);
     let negated = |b: Vec<Vec<Node>>| {
         b.into_iter()
-            .map(|row| row.into_iter().map(|x| g.neg(x)).collect())
+            .map(|row| row.into_iter().map(|x| negated_entry(g, x)).collect())
             .collect()
     };
     let by_loop = Output::Solved(TreeSolve {
