@@ -933,3 +933,97 @@ fn the_free_trees_into_twin_solves_its_one_piece_solve_loop_in_place() {
         );
     }
 }
+
+mechanism! {
+    /// A free base on two isomorphic legs (mirror images) and an arm, without loads: its
+    /// derivatives take the analytical recursion over slots, the legs side by side in the
+    /// lanes of packed values, and the free base's columns from the packed mass matrix.
+    pub struct BipedDerivatives;
+    gravity: [0.4, -0.3, -9.81];
+    outputs: [inverse_dynamics, forward_dynamics, inverse_dynamics_derivatives,
+              forward_dynamics_derivatives];
+    body pelvis { mass: 3.0, com: [0.01, -0.02, 0.03], inertia: [[0.04, 0.002, 0.001], [0.002, 0.03, 0.003], [0.001, 0.003, 0.035]] }
+    joint base: free(ground -> pelvis) { damping: 0.1, armature: 0.02 }
+    body thigh_l { mass: 1.1, com: [0.01, 0.01, -0.12], inertia: diag([0.012, 0.011, 0.002]) }
+    body shin_l { mass: 0.6, com: [0.0, 0.0, -0.15], inertia: diag([0.008, 0.008, 0.001]) }
+    joint hip_l: revolute(pelvis -> thigh_l) { axis: x, at: [0.0, 0.09, -0.05], rotation: rpy(0.1, 0.0, 0.0) }
+    joint knee_l: revolute(thigh_l -> shin_l) { axis: y, at: [0.0, 0.0, -0.3], damping: 0.2 }
+    body thigh_r { mass: 1.1, com: [0.01, -0.01, -0.12], inertia: diag([0.012, 0.011, 0.002]) }
+    body shin_r { mass: 0.6, com: [0.0, 0.0, -0.15], inertia: diag([0.008, 0.008, 0.001]) }
+    joint hip_r: revolute(pelvis -> thigh_r) { axis: x, at: [0.0, -0.09, -0.05], rotation: rpy(-0.1, 0.0, 0.0) }
+    joint knee_r: revolute(thigh_r -> shin_r) { axis: y, at: [0.0, 0.0, -0.3], armature: 0.03 }
+    body arm { mass: 0.5, com: [0.0, 0.02, 0.1], inertia: diag([0.003, 0.003, 0.0005]) }
+    body hand { mass: 0.2, com: [0.05, 0.0, 0.0], shape: sphere(radius: 0.04) }
+    joint shoulder: revolute(pelvis -> arm) { axis: [0.2, 1.0, 0.1], at: [0.05, 0.0, 0.2] }
+    joint wrist: prismatic(arm -> hand) { axis: z, at: [0.0, 0.0, 0.25] }
+}
+
+/// The biped's ∂τ and ∂q̈ (the recursion over slots, the legs packed) are the runtime
+/// reference's Newton–Euler and articulated-body algorithms at `Dual<f64>`, along
+/// q ⊕ t e_j and v + t e_j, at states with velocities and accelerations.
+#[test]
+fn derivatives_of_a_biped_over_slots_are_the_reference_dual_numbers() {
+    use dynamics_runtime::{integrate_configuration, Dual, Mechanism, Reference};
+    type D = Dual<f64>;
+    const NQ: usize = 13;
+    const NV: usize = 12;
+    let model = BipedDerivatives::model();
+    let mut reference = Reference::<D>::new(&model);
+    let constant = |x: &[f64]| -> Vec<D> { x.iter().map(|&x| D::constant(x)).collect() };
+    for k in 0..4 {
+        let wave = |n: usize, f: f64, s: f64| -> Vec<f64> {
+            (0..n)
+                .map(|i| s * (f * (i + 3 * k) as f64 + 0.4).sin())
+                .collect()
+        };
+        let mut q: [f64; NQ] = wave(NQ, 0.7, 1.2).try_into().expect("NQ");
+        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        let v: [f64; NV] = wave(NV, 1.3, 2.0).try_into().expect("NV");
+        let a: [f64; NV] = wave(NV, 0.9, 3.0).try_into().expect("NV");
+        let tau = BipedDerivatives::inverse_dynamics(&q, &v, &a);
+        let (dtau_dq, dtau_dv) = BipedDerivatives::inverse_dynamics_derivatives(&q, &v, &a);
+        let (ddq_dq, ddq_dv) = BipedDerivatives::forward_dynamics_derivatives(&q, &v, &tau);
+        let (q_d, v_d) = (constant(&q), constant(&v));
+        let (a_d, tau_d) = (constant(&a), constant(&tau));
+        for col in 0..NV {
+            let mut unit = [0.0; NV];
+            unit[col] = 1.0;
+            let mut q_moved = [D::constant(0.0); NQ];
+            integrate_configuration(
+                &q_d,
+                &constant(&unit),
+                D::variable(0.0),
+                &[(0, 0)],
+                &mut q_moved,
+            );
+            let mut v_moved = v_d.clone();
+            v_moved[col] = D::variable(v[col]);
+            let mut out = [D::constant(0.0); NV];
+            let mut column = |q_in: &[D], v_in: &[D], inverse: bool| {
+                if inverse {
+                    reference.inverse_dynamics(q_in, v_in, &a_d, None, &mut out)
+                } else {
+                    reference.forward_dynamics(q_in, v_in, &tau_d, None, &mut out)
+                }
+                .expect("sizes");
+                out.map(|x| x.derivative)
+            };
+            let expected = [
+                ("∂τ/∂q", column(&q_moved, &v_d, true), &dtau_dq, 1e-12),
+                ("∂τ/∂v", column(&q_d, &v_moved, true), &dtau_dv, 1e-12),
+                ("∂q̈/∂q", column(&q_moved, &v_d, false), &ddq_dq, 1e-11),
+                ("∂q̈/∂v", column(&q_d, &v_moved, false), &ddq_dv, 1e-11),
+            ];
+            for (what, want, got, tolerance) in expected {
+                for row in 0..NV {
+                    let (x, y) = (got[row][col], want[row]);
+                    assert!(
+                        (x - y).abs() <= tolerance * (1.0 + y.abs()),
+                        "state {k}, {what}[{row}][{col}]: generated {x}, reference {y}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -31,8 +31,8 @@
 //! Six-dimensional quantities are linear first: motion [v_P; ω], force [F; M_P].
 //!
 //! Both runs sweep [`Slots`]: [`coriolis_matrix`] one body a slot, all values scalar (the
-//! derivatives are built on it); [`coriolis_matrix_packed`] (the generated
-//! `coriolis_matrix`) isomorphic limbs side by side in the lanes of packed values, and
+//! derivatives' body-by-body candidate is built on it); [`coriolis_matrix_packed`] (the
+//! generated `coriolis_matrix`, and the derivatives' packed candidate) isomorphic limbs side by side in the lanes of packed values, and
 //! columns carried four to a value ([`super::slot_columns`]). The humanoid g1's C (35 dof):
 //! 15,768 multiplications and additions column by column, 7,809 so, 7,024 of them on four
 //! lanes.
@@ -110,7 +110,8 @@ fn velocities(
 /// What C is built from, per slot of bodies ([`Slots`]) in their own frames: the twist
 /// v_i, the composite terms ½ İ^C_i (an inertia of mass 0), ½ h^C_i and I^C_i, and each
 /// joint's motion axes s and their rates ṡ = v_i × s. The analytical inverse-dynamics
-/// derivatives ([`super::rnea_derivatives`]) are built from the same terms, one body a slot.
+/// derivatives ([`super::rnea_derivatives`]) are built from the same terms, one body a slot
+/// or over the packed slots.
 pub(crate) struct CompositeTerms {
     /// v_i = [v_P; ω].
     pub twists: Vec<Six>,
