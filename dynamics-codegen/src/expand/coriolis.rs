@@ -307,7 +307,7 @@ mod tests {
     use crate::expand::{
         fresh_graph, inputs,
         slots::Slots,
-        tests::{humanoid, state},
+        tests::{assert_same_values, humanoid},
     };
     use crate::sym::Array;
 
@@ -334,15 +334,6 @@ mod tests {
         let count = g.op_count(&packed);
         assert!(2 * count.packed > count.total(), "{count}");
         assert!(count.total() < g.op_count(&scalar).total(), "{count}");
-        let value = state(&model);
-        let (want, got) = (g.eval(&value, &scalar), g.eval(&value, &packed));
-        for (k, (w, x)) in want.iter().zip(&got).enumerate() {
-            let (row, col) = (k / model.nv, k % model.nv);
-            assert!(
-                (w - x).abs() < 1e-12,
-                "C[{row}][{col}]: {x} packed, {w} not"
-            );
-        }
-        assert!(want.iter().filter(|w| w.abs() > 1e-6).count() > model.nv);
+        assert_same_values(&g, &model, (&scalar, &packed), "C");
     }
 }

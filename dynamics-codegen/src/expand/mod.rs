@@ -73,13 +73,22 @@ pub(crate) fn inputs(g: &Graph, array: Array, n: usize) -> Vec<Node> {
 
 #[cfg(test)]
 pub(crate) mod tests {
+    use proc_macro2::TokenStream;
     use quote::quote;
 
     /// A small humanoid: legs in a pair off the pelvis (two lanes), a waist chain of single
     /// joints (whose columns meet and travel packed), arms in a pair off the chest.
     pub(crate) fn humanoid() -> crate::model::Model {
-        let tokens = quote! {
+        let mechanism: crate::syntax::Mechanism =
+            syn::parse2(humanoid_declaration(quote!())).expect("parses");
+        crate::model::lower(&mechanism).expect("valid")
+    }
+
+    /// [`humanoid`]'s declaration, with `settings` (such as `outputs: [..];`) after its name.
+    pub(crate) fn humanoid_declaration(settings: TokenStream) -> TokenStream {
+        quote! {
             struct Humanoid;
+            #settings
             body pelvis { mass: 3.0, inertia: diag([0.03, 0.02, 0.025]) }
             joint base: free(ground -> pelvis);
             body thigh_l { mass: 1.1, com: [0.0, 0.01, -0.12], inertia: diag([0.012, 0.011, 0.002]) }
@@ -102,9 +111,28 @@ pub(crate) mod tests {
             body forearm_r { mass: 0.3, com: [0.0, 0.0, -0.1], inertia: diag([0.002, 0.002, 0.0003]) }
             joint shoulder_r: revolute(chest -> arm_r) { axis: x, at: [0.0, -0.15, 0.3] }
             joint elbow_r: revolute(arm_r -> forearm_r) { axis: y, at: [0.0, 0.0, -0.22] }
-        };
-        let mechanism: crate::syntax::Mechanism = syn::parse2(tokens).expect("parses");
-        crate::model::lower(&mechanism).expect("valid")
+        }
+    }
+
+    /// Two expansions of one matrix, `scalar` and `packed` (flattened by rows, `model.nv`
+    /// columns), take the same values at [`state`] (within 1e-12 relative), and the values
+    /// are not mostly zero.
+    pub(crate) fn assert_same_values(
+        g: &crate::sym::Graph,
+        model: &crate::model::Model,
+        (scalar, packed): (&[crate::sym::Node], &[crate::sym::Node]),
+        what: &str,
+    ) {
+        let value = state(model);
+        let (want, got) = (g.eval(&value, scalar), g.eval(&value, packed));
+        for (k, (w, x)) in want.iter().zip(&got).enumerate() {
+            let (row, col) = (k / model.nv, k % model.nv);
+            assert!(
+                (w - x).abs() < 1e-12 * (1.0 + w.abs()),
+                "{what}[{row}][{col}]: {x} packed, {w} not"
+            );
+        }
+        assert!(want.iter().filter(|w| w.abs() > 1e-6).count() > 2 * model.nv);
     }
 
     /// A state of `model` (a free root's quaternion normalized): q, and q̇ and q̈ of a few

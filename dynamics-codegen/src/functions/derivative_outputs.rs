@@ -961,21 +961,10 @@ mod tests {
         };
         let arm = compile(chain(7, true, quote!([inverse_dynamics_derivatives])));
         assert!(doc(&arm).contains("analytical"));
-        // Two mirrored legs on a free base: the recursion over slots, the legs side by side.
-        let biped = compile(quote! {
-            struct Biped;
+        // Mirrored legs and arms on a free base: the recursion over slots, side by side.
+        let biped = compile(crate::expand::tests::humanoid_declaration(quote! {
             outputs: [inverse_dynamics_derivatives];
-            body pelvis { mass: 3.0, inertia: diag([0.03, 0.02, 0.025]) }
-            joint base: free(ground -> pelvis);
-            body thigh_l { mass: 1.1, com: [0.0, 0.01, -0.12], inertia: diag([0.012, 0.011, 0.002]) }
-            body shin_l { mass: 0.6, com: [0.0, 0.0, -0.15], inertia: diag([0.008, 0.008, 0.001]) }
-            joint hip_l: revolute(pelvis -> thigh_l) { axis: x, at: [0.0, 0.09, -0.05] }
-            joint knee_l: revolute(thigh_l -> shin_l) { axis: y, at: [0.0, 0.0, -0.3] }
-            body thigh_r { mass: 1.1, com: [0.0, -0.01, -0.12], inertia: diag([0.012, 0.011, 0.002]) }
-            body shin_r { mass: 0.6, com: [0.0, 0.0, -0.15], inertia: diag([0.008, 0.008, 0.001]) }
-            joint hip_r: revolute(pelvis -> thigh_r) { axis: x, at: [0.0, -0.09, -0.05] }
-            joint knee_r: revolute(thigh_r -> shin_r) { axis: y, at: [0.0, 0.0, -0.3] }
-        });
+        }));
         assert!(doc(&biped).contains("side by side"), "{}", doc(&biped));
         let loaded = compile(quote! {
             struct Loaded;
