@@ -58,10 +58,12 @@ use derivative_outputs::{
     momentum_derivatives,
 };
 
-/// Whether the function `name` returns a symmetric matrix (M and M⁻¹), of which a
-/// `_sparse_into` twin writes the upper triangle.
+/// Whether the function `name` returns a symmetric matrix (its catalog entry's
+/// `symmetric`), of which a `_sparse_into` twin writes the upper triangle.
 pub(crate) fn is_symmetric(name: &str) -> bool {
-    matches!(name, "mass_matrix" | "mass_matrix_inverse")
+    CATALOG
+        .iter()
+        .any(|entry| entry.name == name && entry.symmetric)
 }
 
 /// One function of the catalog.
@@ -75,6 +77,9 @@ pub(crate) struct Entry {
     pub arrays: &'static [Array],
     /// Whether it takes the `loads` input (when the model declares loads).
     pub loads: bool,
+    /// Whether it returns a symmetric matrix (M, M⁻¹): a `_sparse_into` twin then writes
+    /// only the upper triangle.
+    pub symmetric: bool,
     /// Its graph, output and doc text.
     pub expand: fn(&Model) -> Expanded,
 }
@@ -96,6 +101,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.inverse_dynamics && m.nv > 0,
         arrays: &[Array::Q, Array::V, Array::A],
         loads: true,
+        symmetric: false,
         expand: inverse_dynamics,
     },
     Entry {
@@ -103,6 +109,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.gravity && m.nv > 0,
         arrays: &[Array::Q],
         loads: false,
+        symmetric: false,
         expand: gravity,
     },
     Entry {
@@ -110,6 +117,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.bias && m.nv > 0,
         arrays: &[Array::Q, Array::V],
         loads: false,
+        symmetric: false,
         expand: bias,
     },
     Entry {
@@ -117,6 +125,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.mass_matrix && m.nv > 0,
         arrays: &[Array::Q],
         loads: false,
+        symmetric: true,
         expand: mass_matrix,
     },
     Entry {
@@ -124,6 +133,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.coriolis && m.nv > 0,
         arrays: &[Array::Q, Array::V],
         loads: false,
+        symmetric: false,
         expand: coriolis_matrix,
     },
     Entry {
@@ -131,6 +141,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.forward_dynamics && m.nv > 0,
         arrays: &[Array::Q, Array::V, Array::Tau],
         loads: true,
+        symmetric: false,
         expand: forward_dynamics,
     },
     Entry {
@@ -138,6 +149,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.forward_dynamics_aba && m.nv > 0,
         arrays: &[Array::Q, Array::V, Array::Tau],
         loads: true,
+        symmetric: false,
         expand: |m| forward_dynamics_named(m, ForwardMethod::ArticulatedBody),
     },
     Entry {
@@ -145,6 +157,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.forward_dynamics_ldlt && m.nv > 0,
         arrays: &[Array::Q, Array::V, Array::Tau],
         loads: true,
+        symmetric: false,
         expand: |m| forward_dynamics_named(m, ForwardMethod::MassMatrixLdlt),
     },
     Entry {
@@ -152,6 +165,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.energy,
         arrays: &[Array::Q, Array::V],
         loads: false,
+        symmetric: false,
         expand: kinetic_energy,
     },
     Entry {
@@ -159,6 +173,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.energy,
         arrays: &[Array::Q],
         loads: false,
+        symmetric: false,
         expand: potential_energy,
     },
     Entry {
@@ -166,6 +181,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.reactions && m.nv > 0,
         arrays: &[Array::Q, Array::V, Array::A],
         loads: true,
+        symmetric: false,
         expand: joint_reactions,
     },
     Entry {
@@ -173,6 +189,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.center_of_mass,
         arrays: &[Array::Q],
         loads: false,
+        symmetric: false,
         expand: center_of_mass,
     },
     Entry {
@@ -180,6 +197,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.center_of_mass_jacobian && m.nv > 0,
         arrays: &[Array::Q],
         loads: false,
+        symmetric: false,
         expand: center_of_mass_jacobian,
     },
     Entry {
@@ -187,6 +205,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.joint_placements && !m.bodies.is_empty(),
         arrays: &[Array::Q],
         loads: false,
+        symmetric: false,
         expand: joint_placements,
     },
     Entry {
@@ -194,6 +213,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.joint_jacobians && m.nv > 0,
         arrays: &[Array::Q],
         loads: false,
+        symmetric: false,
         expand: joint_jacobians,
     },
     Entry {
@@ -201,6 +221,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.joint_jacobians_world && m.nv > 0,
         arrays: &[Array::Q],
         loads: false,
+        symmetric: false,
         expand: joint_jacobians_world,
     },
     Entry {
@@ -208,6 +229,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.joint_jacobians_world_time_variation && m.nv > 0,
         arrays: &[Array::Q, Array::V],
         loads: false,
+        symmetric: false,
         expand: joint_jacobians_world_time_variation,
     },
     Entry {
@@ -215,6 +237,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.forward_kinematics && m.nv > 0,
         arrays: &[Array::Q, Array::V, Array::A],
         loads: false,
+        symmetric: false,
         expand: forward_kinematics,
     },
     Entry {
@@ -222,6 +245,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.joint_velocities && m.nv > 0,
         arrays: &[Array::Q, Array::V],
         loads: false,
+        symmetric: false,
         expand: joint_velocities,
     },
     Entry {
@@ -229,6 +253,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.joint_acceleration_biases && m.nv > 0,
         arrays: &[Array::Q, Array::V],
         loads: false,
+        symmetric: false,
         expand: joint_acceleration_biases,
     },
     Entry {
@@ -236,6 +261,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.centroidal_momentum_matrix && m.nv > 0,
         arrays: &[Array::Q],
         loads: false,
+        symmetric: false,
         expand: centroidal_momentum_matrix,
     },
     Entry {
@@ -243,6 +269,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.centroidal_bias && m.nv > 0,
         arrays: &[Array::Q, Array::V],
         loads: false,
+        symmetric: false,
         expand: centroidal_bias,
     },
     Entry {
@@ -250,6 +277,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.frame_placements && !m.frames.is_empty(),
         arrays: &[Array::Q],
         loads: false,
+        symmetric: false,
         expand: frame_placements,
     },
     Entry {
@@ -257,6 +285,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.frame_jacobians && !m.frames.is_empty() && m.nv > 0,
         arrays: &[Array::Q],
         loads: false,
+        symmetric: false,
         expand: |m| frame_jacobians(m, JacobianAxes::WorldAligned),
     },
     Entry {
@@ -264,6 +293,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.frame_jacobians_local && !m.frames.is_empty() && m.nv > 0,
         arrays: &[Array::Q],
         loads: false,
+        symmetric: false,
         expand: |m| frame_jacobians(m, JacobianAxes::Local),
     },
     Entry {
@@ -271,6 +301,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.frame_velocities && !m.frames.is_empty() && m.nv > 0,
         arrays: &[Array::Q, Array::V],
         loads: false,
+        symmetric: false,
         expand: frame_velocities,
     },
     Entry {
@@ -278,6 +309,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.frame_acceleration_biases && !m.frames.is_empty() && m.nv > 0,
         arrays: &[Array::Q, Array::V],
         loads: false,
+        symmetric: false,
         expand: frame_acceleration_biases,
     },
     Entry {
@@ -285,6 +317,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.inverse_dynamics_derivatives && m.nv > 0,
         arrays: &[Array::Q, Array::V, Array::A],
         loads: true,
+        symmetric: false,
         expand: inverse_dynamics_derivatives,
     },
     Entry {
@@ -292,6 +325,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.forward_dynamics_derivatives && m.nv > 0,
         arrays: &[Array::Q, Array::V, Array::Tau],
         loads: true,
+        symmetric: false,
         expand: forward_dynamics_derivatives,
     },
     Entry {
@@ -299,6 +333,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.mass_matrix_inverse && m.nv > 0,
         arrays: &[Array::Q],
         loads: false,
+        symmetric: true,
         expand: mass_matrix_inverse,
     },
     Entry {
@@ -306,6 +341,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.momentum_derivatives && m.nv > 0,
         arrays: &[Array::Q, Array::V],
         loads: true,
+        symmetric: false,
         expand: momentum_derivatives,
     },
     Entry {
@@ -313,6 +349,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: |m| m.outputs.force_analysis && m.statics.is_some(),
         arrays: &[Array::Q, Array::V, Array::A],
         loads: true,
+        symmetric: false,
         expand: force_analysis,
     },
     Entry {
@@ -320,6 +357,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: wants_constraints,
         arrays: &[Array::Q],
         loads: false,
+        symmetric: false,
         expand: constraint_residual,
     },
     Entry {
@@ -327,6 +365,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: wants_constraints,
         arrays: &[Array::Q],
         loads: false,
+        symmetric: false,
         expand: constraint_jacobian,
     },
     Entry {
@@ -334,6 +373,7 @@ pub(crate) const CATALOG: &[Entry] = &[
         wanted: wants_constraints,
         arrays: &[Array::Q, Array::V],
         loads: false,
+        symmetric: false,
         expand: constraint_bias,
     },
 ];
@@ -1402,5 +1442,40 @@ pub(crate) mod tests {
         assert_eq!(order("inverse_dynamics"), ["q", "v", "a", "p", "loads"]);
         assert_eq!(order("forward_dynamics"), ["q", "v", "tau", "p", "loads"]);
         assert_eq!(order("mass_matrix"), ["q", "p"]);
+    }
+
+    /// The entries marked `symmetric` (whose sparse twins write the upper triangle) are
+    /// M and M⁻¹, and they return symmetric matrices; the Coriolis matrix is not marked.
+    #[test]
+    fn the_entries_marked_symmetric_return_symmetric_matrices() {
+        let marked: Vec<&str> = CATALOG
+            .iter()
+            .filter(|e| e.symmetric)
+            .map(|e| e.name)
+            .collect();
+        assert_eq!(marked, ["mass_matrix", "mass_matrix_inverse"]);
+        let functions = compile(chain(
+            4,
+            true,
+            quote!([mass_matrix, mass_matrix_inverse, coriolis_matrix]),
+        ));
+        let input = |r: crate::sym::InputRef| 0.3 + 0.7 * f64::from(r.index);
+        let mut checked = 0;
+        for f in &functions {
+            let Output::Matrix(rows) = &f.spec.output else {
+                continue;
+            };
+            let values: Vec<Vec<f64>> = rows.iter().map(|row| f.graph.eval(input, row)).collect();
+            let symmetric = (0..rows.len())
+                .all(|i| (0..i).all(|j| (values[i][j] - values[j][i]).abs() < 1e-12));
+            assert_eq!(
+                symmetric,
+                is_symmetric(&f.spec.name.to_string()),
+                "{}",
+                f.spec.name
+            );
+            checked += 1;
+        }
+        assert_eq!(checked, 3);
     }
 }
