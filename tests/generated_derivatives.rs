@@ -337,14 +337,7 @@ fn derivatives_of_a_free_tree_are_the_dual_number_derivatives() {
             }
             // The reference's τ (inverse) or q̈ (forward) at the moved inputs: its ε parts.
             let mut reference_column = |q_in: &[D], v_in: &[D], inverse: bool| {
-                let mut out = [D::constant(0.0); 9];
-                if inverse {
-                    reference.inverse_dynamics(q_in, v_in, &a_d, None, &mut out)
-                } else {
-                    reference.forward_dynamics(q_in, v_in, &tau_d, None, &mut out)
-                }
-                .expect("sizes");
-                out.map(|x| x.derivative)
+                dual_reference_column::<9>(&mut reference, (q_in, v_in), (&a_d, &tau_d), inverse)
             };
             let columns = [
                 (reference_column(&q_moved, &v_d, true), &mut ref_q),
@@ -408,6 +401,30 @@ fn derivatives_of_a_free_tree_are_the_dual_number_derivatives() {
             &state("∂q̈/∂v, reference at Dual"),
         );
     }
+}
+
+/// The ε parts of the runtime reference's τ (`inverse`, at the accelerations `a`) or q̈
+/// (at the forces `tau`) at dual-number inputs: one column of its derivatives.
+fn dual_reference_column<const N: usize>(
+    reference: &mut dynamics_runtime::Reference<dynamics_runtime::Dual<f64>>,
+    (q, v): (
+        &[dynamics_runtime::Dual<f64>],
+        &[dynamics_runtime::Dual<f64>],
+    ),
+    (a, tau): (
+        &[dynamics_runtime::Dual<f64>],
+        &[dynamics_runtime::Dual<f64>],
+    ),
+    inverse: bool,
+) -> [f64; N] {
+    let mut out = [dynamics_runtime::Dual::constant(0.0); N];
+    if inverse {
+        reference.inverse_dynamics(q, v, a, None, &mut out)
+    } else {
+        reference.forward_dynamics(q, v, tau, None, &mut out)
+    }
+    .expect("sizes");
+    out.map(|x| x.derivative)
 }
 
 /// Central differences in double-double arithmetic (about 32 digits): with a step of 1e-9
@@ -999,15 +1016,8 @@ fn derivatives_of_a_biped_over_slots_are_the_reference_dual_numbers() {
             );
             let mut v_moved = v_d.clone();
             v_moved[col] = D::variable(v[col]);
-            let mut out = [D::constant(0.0); NV];
             let mut column = |q_in: &[D], v_in: &[D], inverse: bool| {
-                if inverse {
-                    reference.inverse_dynamics(q_in, v_in, &a_d, None, &mut out)
-                } else {
-                    reference.forward_dynamics(q_in, v_in, &tau_d, None, &mut out)
-                }
-                .expect("sizes");
-                out.map(|x| x.derivative)
+                dual_reference_column::<NV>(&mut reference, (q_in, v_in), (&a_d, &tau_d), inverse)
             };
             let expected = [
                 ("∂τ/∂q", column(&q_moved, &v_d, true), &dtau_dq, 1e-12),

@@ -1792,6 +1792,18 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
         );
     }
 
+    /// A solve over a tree of two coordinates (the second the first's child), its factor
+    /// and pivots from the chain `xs`, with the right-hand sides `rhs` (one per coordinate).
+    fn two_coordinate_solve(xs: &[Node], rhs: Vec<Vec<Node>>, sweeps: Sweeps) -> Output {
+        Output::Solved(TreeSolve {
+            parents: vec![None, Some(0)],
+            factor: vec![xs[1]],
+            inverse_pivot: vec![xs[2], xs[4]],
+            rhs: vec![rhs],
+            sweeps,
+        })
+    }
+
     /// A solve loop (`Output::Solved`) runs in the kernel's own copy when a kernel builds
     /// the output, through `T::run_kernel` when a split function builds it outside its
     /// pieces, and in the baseline copy only when the function has no other.
@@ -1799,13 +1811,7 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
     fn a_solve_loop_runs_in_the_copy_of_its_caller() {
         let g = Graph::new();
         let xs = long_chain(&g, 200);
-        let solved = Output::Solved(TreeSolve {
-            parents: vec![None, Some(0)],
-            factor: vec![xs[1]],
-            inverse_pivot: vec![xs[2], xs[4]],
-            rhs: vec![vec![vec![xs[0]], vec![xs[3]]]],
-            sweeps: Sweeps::All,
-        });
+        let solved = two_coordinate_solve(&xs, vec![vec![xs[0]], vec![xs[3]]], Sweeps::All);
         let mut s = spec("solved", &[(Array::Q, 8), (Array::V, 3)], solved);
         // The text without white space, where the pretty printer may break lines.
         let text = |s: &FunctionSpec| {
@@ -1836,13 +1842,8 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
     fn the_last_sweep_binds_no_pivots() {
         let g = Graph::new();
         let xs = long_chain(&g, 200);
-        let solved = Output::Solved(TreeSolve {
-            parents: vec![None, Some(0)],
-            factor: vec![xs[1]],
-            inverse_pivot: vec![xs[2], xs[4]],
-            rhs: vec![vec![vec![xs[0], xs[3]], vec![xs[3], xs[4]]]],
-            sweeps: Sweeps::LastOfInverse,
-        });
+        let rhs = vec![vec![xs[0], xs[3]], vec![xs[3], xs[4]]];
+        let solved = two_coordinate_solve(&xs, rhs, Sweeps::LastOfInverse);
         let mut s = spec("inverse", &[(Array::Q, 8), (Array::V, 3)], solved);
         s.split_threshold = usize::MAX;
         let text = pretty(emit_function(&g, &s));

@@ -39,7 +39,7 @@
 
 use super::crba::slot_composite_inertias;
 use super::geometry::{self, BodyInertia, JointTransform};
-use super::slot_columns::{pack_columns, CarriedColumns};
+use super::slot_columns::{carry_columns_up, CarriedColumns};
 use super::slots::{padded, Slots};
 use super::spatial::{add6, dot6, force_cross, inertia_times, motion_cross, sub6, Six};
 use super::spatial::{motion_subspace, symmetric};
@@ -250,15 +250,13 @@ fn by_slots(
     let inertias = slots.inertias(g, inertias);
     let terms = slot_composite_terms(g, model, slots, &transforms, &inertias, velocity);
     let mut c = vec![vec![g.zero(); model.nv]; model.nv];
-    let mut arriving: Vec<Vec<CarriedColumns>> = slots.slots.iter().map(|_| Vec::new()).collect();
-    for s in (0..slots.slots.len()).rev() {
+    carry_columns_up(g, slots, &transforms, repack, |s, carried| {
         let slot = &slots.slots[s];
         let row_of = |k: usize, row_in_joint: usize| {
             model.bodies[*padded(&slot.lanes, k)].joint.idx_v + row_in_joint
         };
         // The columns of the bodies below: in a packed slot lane k is the row's body too.
-        let mut carried = std::mem::take(&mut arriving[s]);
-        for column in &carried {
+        for column in carried.iter() {
             let [f1, f2, f3] = [0, 1, 2].map(|w| column.wrenches[w]);
             for (r, &s_i) in terms.subspaces[s].iter().enumerate() {
                 let below = dot6(g, s_i, f1);
@@ -289,15 +287,7 @@ fn by_slots(
                 columns: (0..slot.lanes.len()).map(|k| row_of(k, col)).collect(),
             });
         }
-        if let Some(p) = slots.parent_slot(s) {
-            if repack && slot.lanes.len() == 1 {
-                carried = pack_columns(g, carried);
-            }
-            for column in carried {
-                arriving[p].push(column.moved_to_parent(g, &transforms[s]));
-            }
-        }
-    }
+    });
     c
 }
 

@@ -42,7 +42,7 @@
 use super::coriolis::{self, CompositeTerms};
 use super::geometry::{self, BodyInertia, JointTransform};
 use super::rnea::{self, BodyMotion, SweepInputs};
-use super::slot_columns::{pack_columns, CarriedColumns};
+use super::slot_columns::{carry_columns_up, CarriedColumns};
 use super::slots::{padded, Slots};
 use super::spatial::{add6, dot6, force_cross, inertia_times, motion_cross, scale6, Six};
 use crate::model::{JointKind, Model};
@@ -179,8 +179,7 @@ pub fn configuration_jacobian_packed(
     );
     let two = g.constant(2.0);
     let mut jacobian = vec![vec![g.zero(); model.nv]; model.nv];
-    let mut arriving: Vec<Vec<CarriedColumns>> = slots.slots.iter().map(|_| Vec::new()).collect();
-    for s in (0..slots.slots.len()).rev() {
+    carry_columns_up(g, &slots, &transforms, true, |s, carried| {
         let slot = &slots.slots[s];
         let row_of = |k: usize, row_in_joint: usize| {
             model.bodies[*padded(&slot.lanes, k)].joint.idx_v + row_in_joint
@@ -200,8 +199,7 @@ pub fn configuration_jacobian_packed(
         });
         // The columns of the joints below: ∂τ_i/∂q_j = s_i · G_j in this slot's rows i,
         // ∂τ_j/∂q_i = (I^C_j s_j)·Ψ̈_i + 2 (B^C_jᵀ s_j)·Ψ̇_i in their rows j.
-        let mut carried = std::mem::take(&mut arriving[s]);
-        for column in &carried {
+        for column in carried.iter() {
             let [inertia_s, bt_s, g_j] = [0, 1, 2].map(|w| column.wrenches[w]);
             for (r, &s_i) in terms.subspaces[s].iter().enumerate() {
                 let entry = dot6(g, s_i, g_j);
@@ -241,15 +239,7 @@ pub fn configuration_jacobian_packed(
                 columns,
             });
         }
-        if let Some(p) = slots.parent_slot(s) {
-            if slot.lanes.len() == 1 {
-                carried = pack_columns(g, carried);
-            }
-            for column in carried {
-                arriving[p].push(column.moved_to_parent(g, &transforms[s]));
-            }
-        }
-    }
+    });
     jacobian
 }
 

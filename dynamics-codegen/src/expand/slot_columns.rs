@@ -13,7 +13,7 @@
 //! wrenches.
 
 use super::geometry::{self, JointTransform};
-use super::slots::padded;
+use super::slots::{padded, Slots};
 use super::spatial::Six;
 use crate::sym::{Graph, Vec3};
 
@@ -82,4 +82,31 @@ pub(crate) fn pack_columns(g: &Graph, carried: Vec<CarriedColumns>) -> Vec<Carri
         });
     }
     out
+}
+
+/// The sweep that carries a tree matrix's columns from the leaves to the root over `slots`
+/// (with their joint transforms): at each slot, `at_slot(s, carried)` is given the columns
+/// arriving from below (in slot s's frame), reads its rows' entries from them and pushes
+/// the slot's own columns; they then move to the parent slot, those leaving a scalar slot
+/// packed again ([`pack_columns`]) when `repack`.
+pub(crate) fn carry_columns_up(
+    g: &Graph,
+    slots: &Slots,
+    transforms: &[JointTransform],
+    repack: bool,
+    mut at_slot: impl FnMut(usize, &mut Vec<CarriedColumns>),
+) {
+    let mut arriving: Vec<Vec<CarriedColumns>> = slots.slots.iter().map(|_| Vec::new()).collect();
+    for s in (0..slots.slots.len()).rev() {
+        let mut carried = std::mem::take(&mut arriving[s]);
+        at_slot(s, &mut carried);
+        if let Some(p) = slots.parent_slot(s) {
+            if repack && slots.slots[s].lanes.len() == 1 {
+                carried = pack_columns(g, carried);
+            }
+            for column in carried {
+                arriving[p].push(column.moved_to_parent(g, &transforms[s]));
+            }
+        }
+    }
 }
