@@ -155,8 +155,7 @@ fn configuration_jacobian_with_free_columns(
     {
         return jacobian;
     }
-    let mass =
-        || free_columns_mass_matrix(g, model, expansion, &[], (&CoriolisBasis::new(), false));
+    let mass = || regrouped_mass_matrix(g, model, expansion.0, expansion.1, false);
     fill_free_configuration_columns(g, model, expansion.0, mass, &mut jacobian);
     jacobian
 }
@@ -342,17 +341,12 @@ pub(super) fn inverse_dynamics_derivatives(model: &Model) -> Expanded {
                                       (C the Christoffel-consistent Coriolis matrix; a free \
                                       joint's columns from M and C)"
         }
-        VelocityColumns::Analytic { packed: false } => {
+        VelocityColumns::Analytic { packed } => &format!(
             "the analytical Newton–Euler derivative recursion for ∂τ/∂q over the Coriolis \
              matrix's composite terms, and ∂τ/∂q̇ = 2 C(q, q̇) + diag(b) (C the \
-             Christoffel-consistent Coriolis matrix; a free joint's columns from M and C)"
-        }
-        VelocityColumns::Analytic { packed: true } => {
-            "the analytical Newton–Euler derivative recursion for ∂τ/∂q over the Coriolis \
-             matrix's composite terms, and ∂τ/∂q̇ = 2 C(q, q̇) + diag(b) (C the \
-             Christoffel-consistent Coriolis matrix; a free joint's columns from M and C), \
-             isomorphic limbs computed side by side"
-        }
+             Christoffel-consistent Coriolis matrix; a free joint's columns from M and C){}",
+            side_by_side(packed)
+        ),
     };
     Expanded {
         graph,
@@ -399,15 +393,11 @@ pub(super) fn forward_dynamics_derivatives(model: &Model) -> Expanded {
                 "forward-mode derivatives of Newton–Euler for ∂τ/∂q, ∂τ/∂q̇ = 2 C(q, q̇) + diag(b), \
                  a free joint's columns from M and C"
             }
-            VelocityColumns::Analytic { packed: false } => {
+            VelocityColumns::Analytic { packed } => &format!(
                 "the analytical derivative recursion of Newton–Euler for ∂τ/∂q, \
-                 ∂τ/∂q̇ = 2 C(q, q̇) + diag(b), a free joint's columns from M and C"
-            }
-            VelocityColumns::Analytic { packed: true } => {
-                "the analytical derivative recursion of Newton–Euler for ∂τ/∂q, \
-                 ∂τ/∂q̇ = 2 C(q, q̇) + diag(b), a free joint's columns from M and C, \
-                 isomorphic limbs computed side by side"
-            }
+                 ∂τ/∂q̇ = 2 C(q, q̇) + diag(b), a free joint's columns from M and C{}",
+                side_by_side(packed)
+            ),
         };
         let qdd_by = match method {
             ForwardMethod::ArticulatedBody => "the articulated-body algorithm",
@@ -450,6 +440,15 @@ pub(super) fn forward_dynamics_derivatives(model: &Model) -> Expanded {
              {TANGENT_CONVENTION}{}",
             load_derivatives_doc(model)
         ),
+    }
+}
+
+/// What the docs add for the recursion over isomorphic limbs side by side.
+fn side_by_side(packed: bool) -> &'static str {
+    if packed {
+        ", isomorphic limbs computed side by side"
+    } else {
+        ""
     }
 }
 
