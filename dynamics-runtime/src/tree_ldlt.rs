@@ -11,7 +11,10 @@
 //! Each row X_k is a whole row of C columns, updated by one multiply-add per column, so the
 //! loop over the columns is what runs in SIMD registers (four `f64` per AVX2 instruction in
 //! the wide copy of a generated function, [`crate::isa`]). Both sweeps gather into a row
-//! held in registers and store it once. Generated code calls this for the chain rule of
+//! held in registers and store it once (the rows of several matrices together when they
+//! fit, else one matrix after another), and the second scales each row by 1 / D_k as it
+//! reaches it. The loop is bound by its loads, about one per multiply-add (`cargo bench -p
+//! dynamics-runtime --bench tree_ldlt`). Generated code calls this for the chain rule of
 //! the forward-dynamics derivatives, ∂q̈/∂x = −M⁻¹ ∂τ/∂x, where the same factor solves
 //! 2 nv columns: a loop instead of nv straight-line solves keeps the code small enough for
 //! the instruction cache on large trees. The last sweep alone ([`solve_lower_columns`])
@@ -137,18 +140,11 @@ pub fn solve_columns<
     for j in (0..N).rev() {
         let end = tree.descendants_end[j];
         let below = tree.descendants.get(start..end).unwrap_or(&[]);
-        gather_row(isa, &mut columns, j, below, factor);
+        gather_row(isa, &mut columns, j, None, below, factor);
         start = end;
     }
-    for k in 0..N {
-        for m in 0..K {
-            for c in 0..C {
-                columns[m][k][c] *= inverse_pivot[k];
-            }
-        }
-    }
-    // L X = Y.
-    solve_lower_columns(isa, tree, factor, columns);
+    // Y = D⁻¹ Z and L X = Y, each row scaled as the second sweep reaches it.
+    lower_sweep(isa, tree, factor, Some(inverse_pivot), columns);
 }
 
 /// X = L⁻¹ Y for every column of the `K` matrices Y in `columns`, in place: the last sweep
@@ -168,14 +164,34 @@ pub fn solve_lower_columns<
     isa: Isa<WIDE>,
     tree: &CoordinateTree<N, P>,
     factor: &[T; P],
+    columns: [&mut [[T; C]; N]; K],
+) {
+    lower_sweep(isa, tree, factor, None, columns);
+}
+
+/// L X = Y in place, from the root: row k, first scaled by `scale[k]` if given, gathers its
+/// ancestors' final rows, the parent first.
+#[inline(always)]
+fn lower_sweep<
+    T: Scalar,
+    const WIDE: bool,
+    const N: usize,
+    const P: usize,
+    const C: usize,
+    const K: usize,
+>(
+    isa: Isa<WIDE>,
+    tree: &CoordinateTree<N, P>,
+    factor: &[T; P],
+    scale: Option<&[T; N]>,
     mut columns: [&mut [[T; C]; N]; K],
 ) {
-    // From the root: row k gathers its ancestors' final rows, the parent first.
     let mut start = 0;
     for k in 0..N {
         let end = tree.row_end[k];
         let above = tree.ancestors.get(start..end).unwrap_or(&[]);
-        gather_row(isa, &mut columns, k, above, factor);
+        let scale = scale.and_then(|s| s.get(k).copied());
+        gather_row(isa, &mut columns, k, scale, above, factor);
         start = end;
     }
 }
@@ -192,10 +208,13 @@ pub fn mirror_upper_triangle<T: Copy, const N: usize>(x: &mut [[T; N]; N]) {
     }
 }
 
-/// Row `r` of every matrix minus L · row `other` for each (other, position of L in
-/// `factor`) of `terms`, in order, accumulated in a local row (registers) and stored once.
-/// Plain indexed loops, inlined into the generated kernel, so that the wide copy's
-/// multiply-adds compile to FMA instructions.
+/// Row `r` of every matrix, times `scale` if given, minus L · row `other` for each (other,
+/// position of L in `factor`) of `terms`, in order, accumulated in a local row (registers) and stored once:
+/// the rows of all `K` matrices together when their `K C` numbers fit in [`ROW_IN_REGISTERS`],
+/// else one matrix's row after another's, each a pass over the terms (together, g1's
+/// two rows of 35 spilled to the stack at every term: its forward-dynamics derivatives'
+/// solve took 1.3 times as long). Plain indexed loops, inlined into the generated kernel,
+/// so that the wide copy's multiply-adds compile to FMA instructions.
 #[inline(always)]
 fn gather_row<
     T: Scalar,
@@ -208,6 +227,37 @@ fn gather_row<
     isa: Isa<WIDE>,
     columns: &mut [&mut [[T; C]; N]; K],
     r: usize,
+    scale: Option<T>,
+    terms: &[(usize, usize)],
+    factor: &[T; P],
+) {
+    if K * C <= ROW_IN_REGISTERS {
+        gather_rows(isa, columns, r, scale, terms, factor);
+    } else {
+        for x in columns.iter_mut() {
+            gather_rows(isa, &mut [&mut **x], r, scale, terms, factor);
+        }
+    }
+}
+
+/// The numbers a row held in registers may have: 40 `f64` are ten of the sixteen AVX2
+/// registers, leaving six to the loads and the factor's entry.
+const ROW_IN_REGISTERS: usize = 40;
+
+/// [`gather_row`] on the rows of all the matrices `columns` at once.
+#[inline(always)]
+fn gather_rows<
+    T: Scalar,
+    const WIDE: bool,
+    const N: usize,
+    const P: usize,
+    const C: usize,
+    const K: usize,
+>(
+    isa: Isa<WIDE>,
+    columns: &mut [&mut [[T; C]; N]; K],
+    r: usize,
+    scale: Option<T>,
     terms: &[(usize, usize)],
     factor: &[T; P],
 ) {
@@ -217,6 +267,11 @@ fn gather_row<
     let mut row = [[T::from_f64(0.0); C]; K];
     for m in 0..K {
         row[m] = columns[m][r];
+        if let Some(s) = scale {
+            for c in 0..C {
+                row[m][c] *= s;
+            }
+        }
     }
     for &(other, at) in terms {
         if let (Some(&l), true) = (factor.get(at), other < N) {
@@ -319,6 +374,54 @@ mod tests {
         );
         for (a, b) in x.iter().flatten().zip(wide.iter().flatten()) {
             assert!((a - b).abs() < 1e-13);
+        }
+    }
+
+    /// Two matrices of 24 columns are more than a row in registers holds, so each is swept
+    /// on its own: the same bits as solving each alone, and M X = B.
+    #[test]
+    fn matrices_too_wide_to_hold_together_are_solved_one_after_the_other() {
+        const TREE: CoordinateTree<10, PAIRS> = CoordinateTree::new(PARENTS);
+        const { assert!(2 * 24 > super::ROW_IN_REGISTERS && 24 <= super::ROW_IN_REGISTERS) };
+        let factor: [f64; PAIRS] = core::array::from_fn(|k| 0.3 * (k as f64 * 0.7).sin());
+        let d: [f64; 10] = core::array::from_fn(|k| 1.0 + 0.1 * k as f64);
+        let inverse_pivot = d.map(|x| 1.0 / x);
+        let b: [[f64; 24]; 10] =
+            core::array::from_fn(|r| core::array::from_fn(|c| ((r * 24 + c) as f64).cos()));
+        let b2: [[f64; 24]; 10] =
+            core::array::from_fn(|r| core::array::from_fn(|c| ((r * 24 + c) as f64).sin()));
+        let (mut x, mut y) = (b, b2);
+        solve_columns(
+            Isa::BASELINE,
+            &TREE,
+            &factor,
+            &inverse_pivot,
+            [&mut x, &mut y],
+        );
+        let (mut x_alone, mut y_alone) = (b, b2);
+        solve_columns(
+            Isa::BASELINE,
+            &TREE,
+            &factor,
+            &inverse_pivot,
+            [&mut x_alone],
+        );
+        solve_columns(
+            Isa::BASELINE,
+            &TREE,
+            &factor,
+            &inverse_pivot,
+            [&mut y_alone],
+        );
+        assert_eq!((x, y), (x_alone, y_alone));
+        let m = dense(&factor, &d);
+        for (solved, rhs) in [(&x, &b), (&y, &b2)] {
+            for c in 0..24 {
+                for r in 0..10 {
+                    let mx: f64 = (0..10).map(|k| m[r][k] * solved[k][c]).sum();
+                    assert!((mx - rhs[r][c]).abs() < 1e-12, "row {r} column {c}");
+                }
+            }
         }
     }
 
