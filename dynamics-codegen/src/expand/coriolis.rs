@@ -175,16 +175,7 @@ pub(crate) fn slot_composite_terms(
         .unzip();
     // ½ İ^C and ½ h^C: the subtree sums, each in its body's frame.
     let rate_composite = slot_composite_inertias(g, slots, transforms, &rates);
-    for s in (0..n).rev() {
-        if let Some(p) = slots.parent_slot(s) {
-            let (f, m) = momenta[s];
-            let moved = geometry::wrench_to_parent(g, &transforms[s], f, m);
-            for k in slots.lanes_into_parent(s) {
-                let lane = |x: Vec3| k.map_or(x, |k| x.lane(g, k));
-                momenta[p] = add6(g, momenta[p], (lane(moved.0), lane(moved.1)));
-            }
-        }
-    }
+    super::slots::sum_wrenches_up(g, slots, transforms, &mut momenta);
     let i_composite = slot_composite_inertias(g, slots, transforms, inertias);
     let subspaces: Vec<Vec<Six>> = slots
         .slots

@@ -288,16 +288,7 @@ fn slot_sweep(
         .zip(inertias)
         .map(|(motion, inertia)| rnea::body_wrench(g, motion, inertia))
         .collect();
-    for s in (0..slots.slots.len()).rev() {
-        if let Some(p) = slots.parent_slot(s) {
-            let (f, m) = wrenches[s];
-            let moved = geometry::wrench_to_parent(g, &transforms[s], f, m);
-            for k in slots.lanes_into_parent(s) {
-                let lane = |x: Vec3| k.map_or(x, |k| x.lane(g, k));
-                wrenches[p] = add6(g, wrenches[p], (lane(moved.0), lane(moved.1)));
-            }
-        }
-    }
+    super::slots::sum_wrenches_up(g, slots, transforms, &mut wrenches);
     motions.into_iter().zip(wrenches).collect()
 }
 

@@ -11,7 +11,8 @@
 //! share one parent slot, lane k's parent in its lane k, or one parent body (scalar) for
 //! all lanes.
 
-use super::geometry::{BodyInertia, JointTransform};
+use super::geometry::{self, BodyInertia, JointTransform};
+use super::spatial::{add6, Six};
 use crate::model::Model;
 use crate::sym::{Graph, Mat3, Node, Vec3};
 
@@ -189,6 +190,28 @@ impl Slots {
                 }
             })
             .collect()
+    }
+}
+
+/// The subtree sums of slot-indexed wrenches, each in its slot's frame, in place: from the
+/// leaves, each slot's sum moved into its parent's frame (`transforms`, indexed by slot)
+/// and added there, lane for lane into a packed parent, each lane in turn into a scalar
+/// one (the Newton–Euler backward sweep's F_i + Σ X F_child, or C's momenta ½ h^C).
+pub fn sum_wrenches_up(
+    g: &Graph,
+    slots: &Slots,
+    transforms: &[JointTransform],
+    wrenches: &mut [Six],
+) {
+    for s in (0..slots.slots.len()).rev() {
+        if let Some(p) = slots.parent_slot(s) {
+            let (f, m) = wrenches[s];
+            let moved = geometry::wrench_to_parent(g, &transforms[s], f, m);
+            for k in slots.lanes_into_parent(s) {
+                let lane = |x: Vec3| k.map_or(x, |k| x.lane(g, k));
+                wrenches[p] = add6(g, wrenches[p], (lane(moved.0), lane(moved.1)));
+            }
+        }
     }
 }
 
