@@ -14,7 +14,9 @@
 //! held in registers and store it once (the rows of several matrices together when they
 //! fit, else one matrix after another), and the second scales each row by 1 / D_k as it
 //! reaches it. The loop is bound by its loads, about one per multiply-add (`cargo bench -p
-//! dynamics-runtime --bench tree_ldlt`). Generated code calls this for the chain rule of
+//! dynamics-runtime --bench tree_ldlt`), so where two rows fit in registers (an 18-dof
+//! robot's), a row and the next row of its chain gather together, each row they share
+//! loaded once for both. Generated code calls this for the chain rule of
 //! the forward-dynamics derivatives, ∂q̈/∂x = −M⁻¹ ∂τ/∂x, where the same factor solves
 //! 2 nv columns: a loop instead of nv straight-line solves keeps the code small enough for
 //! the instruction cache on large trees. The last sweep alone ([`solve_lower_columns`])
@@ -38,6 +40,10 @@ pub struct CoordinateTree<const N: usize, const P: usize> {
     /// towards the root, each with the position of L_ki in the factor (its own position).
     ancestors: [(usize, usize); P],
     row_end: [usize; N],
+    /// Each coordinate's parent.
+    parent: [Option<usize>; N],
+    /// How many coordinates have each coordinate as their parent.
+    children: [usize; N],
     /// For j = N − 1 down to 0 in turn, its descendants k, deepest number first, each with
     /// the position of L_kj in the factor; j's end at `descendants_end[j]`.
     descendants: [(usize, usize); P],
@@ -56,6 +62,7 @@ impl<const N: usize, const P: usize> CoordinateTree<N, P> {
     #[must_use]
     pub const fn new(parent: [Option<usize>; N]) -> Self {
         let mut depth = [0; N];
+        let mut children = [0; N];
         let mut ancestors = [(0, 0); P];
         let mut row_end = [0; N];
         let mut p = 0;
@@ -64,6 +71,7 @@ impl<const N: usize, const P: usize> CoordinateTree<N, P> {
             if let Some(i) = parent[k] {
                 assert!(i < k, "a coordinate's parent must come before it");
                 depth[k] = depth[i] + 1;
+                children[i] += 1;
             }
             let mut ancestor = parent[k];
             while let Some(i) = ancestor {
@@ -106,18 +114,41 @@ impl<const N: usize, const P: usize> CoordinateTree<N, P> {
         CoordinateTree {
             ancestors,
             row_end,
+            parent,
+            children,
             descendants,
             descendants_end,
         }
+    }
+
+    /// Row k's terms in L X = Y: its ancestors, the parent first, with L_ki's positions.
+    fn lower_terms(&self, k: usize) -> &[(usize, usize)] {
+        let start = if k == 0 { 0 } else { self.row_end[k - 1] };
+        self.ancestors.get(start..self.row_end[k]).unwrap_or(&[])
+    }
+
+    /// Row j's terms in Lᵀ Z = B: its descendants, deepest number first, with L_kj's
+    /// positions.
+    fn upper_terms(&self, j: usize) -> &[(usize, usize)] {
+        let start = if j + 1 >= N {
+            0
+        } else {
+            self.descendants_end[j + 1]
+        };
+        self.descendants
+            .get(start..self.descendants_end[j])
+            .unwrap_or(&[])
     }
 }
 
 /// X = M⁻¹ B for every column of the `K` matrices B in `columns`, in place (each `N` rows
 /// of `C` columns, row k holding coordinate k's entries), M = Lᵀ D L given by `factor`
 /// (L_ki, row after row, each row's entries from k's parent towards the root) and
-/// `inverse_pivot` (1 / D_k). Each column gets the same operations, in the same order, as
-/// one straight-line tree-sparse solve of it; in the `WIDE` copy of a generated function
-/// the products are fused into their differences. In place, so that generated code solves
+/// `inverse_pivot` (1 / D_k). Each column gets the same operations as one straight-line
+/// tree-sparse solve of it, in the same order except where two rows of a chain are taken
+/// together (rows of at most 20 columns, [`pairs_fit`]): there, in L X = Y, the lower row's
+/// parent term comes last of its sum instead of first. In the `WIDE` copy of a generated
+/// function the products are fused into their differences. In place, so that generated code solves
 /// in the value it returns: taking and returning the matrices by value cost the
 /// quadruped's ∂q̈ two extra copies of its 5 kB of columns (2 to 5 % of its time).
 #[inline(always)]
@@ -135,13 +166,25 @@ pub fn solve_columns<
     inverse_pivot: &[T; N],
     mut columns: [&mut [[T; C]; N]; K],
 ) {
-    // Lᵀ Z = B, from the leaves: row j gathers its descendants' final rows.
-    let mut start = 0;
-    for j in (0..N).rev() {
-        let end = tree.descendants_end[j];
-        let below = tree.descendants.get(start..end).unwrap_or(&[]);
-        gather_row(isa, &mut columns, j, None, below, factor);
-        start = end;
+    // Lᵀ Z = B, from the leaves: row j gathers its descendants' final rows, deepest first;
+    // where j is its parent's only child, the parent's row too (its terms are j's and then
+    // j itself).
+    let mut j = N;
+    while j > 0 {
+        j -= 1;
+        let parent = tree.parent[j];
+        match parent {
+            Some(i) if pairs_fit(C) && tree.children[i] == 1 => {
+                let (own, parents) = (tree.upper_terms(j), tree.upper_terms(i));
+                if let Some((&(_, last), shared)) = parents.split_last() {
+                    for x in columns.iter_mut() {
+                        gather_pair(isa, x, (j, i), (None, None), (own, shared, last), factor);
+                    }
+                }
+                j = i;
+            }
+            _ => gather_row(isa, &mut columns, j, None, tree.upper_terms(j), factor),
+        }
     }
     // Y = D⁻¹ Z and L X = Y, each row scaled as the second sweep reaches it.
     lower_sweep(isa, tree, factor, Some(inverse_pivot), columns);
@@ -170,7 +213,8 @@ pub fn solve_lower_columns<
 }
 
 /// L X = Y in place, from the root: row k, first scaled by `scale[k]` if given, gathers its
-/// ancestors' final rows, the parent first.
+/// ancestors' final rows, the parent first; a row and its only child together where two
+/// rows fit in registers.
 #[inline(always)]
 fn lower_sweep<
     T: Scalar,
@@ -186,14 +230,82 @@ fn lower_sweep<
     scale: Option<&[T; N]>,
     mut columns: [&mut [[T; C]; N]; K],
 ) {
-    let mut start = 0;
-    for k in 0..N {
-        let end = tree.row_end[k];
-        let above = tree.ancestors.get(start..end).unwrap_or(&[]);
-        let scale = scale.and_then(|s| s.get(k).copied());
-        gather_row(isa, &mut columns, k, scale, above, factor);
-        start = end;
+    let scale_of = |k: usize| scale.and_then(|s| s.get(k).copied());
+    let mut k = 0;
+    while k < N {
+        // Row k + 1 below row k: its terms are k itself and then k's.
+        let pair = (pairs_fit(C) && k + 1 < N && tree.parent[k + 1] == Some(k))
+            .then(|| tree.lower_terms(k + 1).split_first())
+            .flatten();
+        if let Some((&(_, first), shared)) = pair {
+            let scales = (scale_of(k), scale_of(k + 1));
+            let terms = (tree.lower_terms(k), shared, first);
+            for x in columns.iter_mut() {
+                gather_pair(isa, x, (k, k + 1), scales, terms, factor);
+            }
+            k += 2;
+        } else {
+            gather_row(
+                isa,
+                &mut columns,
+                k,
+                scale_of(k),
+                tree.lower_terms(k),
+                factor,
+            );
+            k += 1;
+        }
     }
+}
+
+/// Two rows at once, `first` and `second`, where `second`'s terms are `first`'s (the same
+/// rows, in `shared` with L's positions in `second`'s row) and `first` itself (L at
+/// `last`): each row of the shared terms loaded once for both (the loop is bound by its
+/// loads); `first` stored, then `second` minus L times `first`'s final row. In Lᵀ Z = B
+/// that is `second`'s own order; in L X = Y, whose rows take the parent first, `first`
+/// moves to the end of `second`'s sum (rounding may differ in the last bits). Only for
+/// rows whose two fit in registers ([`pairs_fit`]).
+#[inline(always)]
+fn gather_pair<T: Scalar, const WIDE: bool, const N: usize, const P: usize, const C: usize>(
+    isa: Isa<WIDE>,
+    x: &mut [[T; C]; N],
+    (first, second): (usize, usize),
+    scales: (Option<T>, Option<T>),
+    (first_terms, shared, last): (&[Term], &[Term], usize),
+    factor: &[T; P],
+) {
+    let (Some(&l_last), true, true) = (factor.get(last), first < N, second < N) else {
+        return;
+    };
+    let (mut a0, mut a1) = (x[first], x[second]);
+    for (row, scale) in [(&mut a0, scales.0), (&mut a1, scales.1)] {
+        if let Some(s) = scale {
+            for c in 0..C {
+                row[c] *= s;
+            }
+        }
+    }
+    for (&(other, at0), &(_, at1)) in first_terms.iter().zip(shared) {
+        if let (Some(&l0), Some(&l1), true) = (factor.get(at0), factor.get(at1), other < N) {
+            for c in 0..C {
+                a0[c] = isa.mul_add(-l0, x[other][c], a0[c]);
+                a1[c] = isa.mul_add(-l1, x[other][c], a1[c]);
+            }
+        }
+    }
+    for c in 0..C {
+        a1[c] = isa.mul_add(-l_last, a0[c], a1[c]);
+    }
+    x[first] = a0;
+    x[second] = a1;
+}
+
+/// A term of a row's sum: the other row, and where its L sits in the factor.
+type Term = (usize, usize);
+
+/// Whether two rows of `C` numbers fit in [`ROW_IN_REGISTERS`], for [`gather_pair`].
+const fn pairs_fit(c: usize) -> bool {
+    2 * c <= ROW_IN_REGISTERS
 }
 
 /// The upper triangle of the square matrix `x` copied onto its lower one, so that a
