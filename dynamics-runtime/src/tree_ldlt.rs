@@ -146,11 +146,11 @@ impl<const N: usize, const P: usize> CoordinateTree<N, P> {
 /// (L_ki, row after row, each row's entries from k's parent towards the root) and
 /// `inverse_pivot` (1 / D_k). Each column gets the same operations as one straight-line
 /// tree-sparse solve of it, in the same order except where two rows of a chain are taken
-/// together (rows of at most 20 columns, [`pairs_fit`]): there, in L X = Y, the lower row's
-/// parent term comes last of its sum instead of first. In the `WIDE` copy of a generated
-/// function the products are fused into their differences. In place, so that generated code solves
-/// in the value it returns: taking and returning the matrices by value cost the
-/// quadruped's ∂q̈ two extra copies of its 5 kB of columns (2 to 5 % of its time).
+/// together (rows of at most 20 columns): there, in L X = Y, the lower row's parent term
+/// comes last of its sum instead of first. In the `WIDE` copy of a generated function the
+/// products are fused into their differences. In place, so that generated code solves in
+/// the value it returns: taking and returning the matrices by value cost the quadruped's
+/// ∂q̈ two extra copies of its 5 kB of columns (2 to 5 % of its time).
 #[inline(always)]
 pub fn solve_columns<
     T: Scalar,
@@ -321,12 +321,12 @@ pub fn mirror_upper_triangle<T: Copy, const N: usize>(x: &mut [[T; N]; N]) {
 }
 
 /// Row `r` of every matrix, times `scale` if given, minus L · row `other` for each (other,
-/// position of L in `factor`) of `terms`, in order, accumulated in a local row (registers) and stored once:
-/// the rows of all `K` matrices together when their `K C` numbers fit in [`ROW_IN_REGISTERS`],
-/// else one matrix's row after another's, each a pass over the terms (together, g1's
-/// two rows of 35 spilled to the stack at every term: its forward-dynamics derivatives'
-/// solve took 1.3 times as long). Plain indexed loops, inlined into the generated kernel,
-/// so that the wide copy's multiply-adds compile to FMA instructions.
+/// position of L in `factor`) of `terms`, in order, accumulated in a local row (registers)
+/// and stored once: the rows of all `K` matrices together when their `K C` numbers fit in
+/// [`ROW_IN_REGISTERS`], else one matrix's row after another's, each a pass over the terms
+/// (together, g1's two rows of 35 spilled to the stack at every term: its forward-dynamics
+/// derivatives' solve took 1.3 times as long). Plain indexed loops, inlined into the
+/// generated kernel, so that the wide copy's multiply-adds compile to FMA instructions.
 #[inline(always)]
 fn gather_row<
     T: Scalar,
