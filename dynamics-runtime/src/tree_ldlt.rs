@@ -40,8 +40,6 @@ pub struct CoordinateTree<const N: usize, const P: usize> {
     /// towards the root, each with the position of L_ki in the factor (its own position).
     ancestors: [(usize, usize); P],
     row_end: [usize; N],
-    /// Each coordinate's parent.
-    parent: [Option<usize>; N],
     /// How many coordinates have each coordinate as their parent.
     children: [usize; N],
     /// For j = N − 1 down to 0 in turn, its descendants k, deepest number first, each with
@@ -114,11 +112,15 @@ impl<const N: usize, const P: usize> CoordinateTree<N, P> {
         CoordinateTree {
             ancestors,
             row_end,
-            parent,
             children,
             descendants,
             descendants_end,
         }
+    }
+
+    /// Coordinate k's parent: the first of its row's terms.
+    fn parent(&self, k: usize) -> Option<usize> {
+        self.lower_terms(k).first().map(|&(i, _)| i)
     }
 
     /// Row k's terms in L X = Y: its ancestors, the parent first, with L_ki's positions.
@@ -172,18 +174,18 @@ pub fn solve_columns<
     let mut j = N;
     while j > 0 {
         j -= 1;
-        let parent = tree.parent[j];
-        match parent {
-            Some(i) if pairs_fit(C) && tree.children[i] == 1 => {
-                let (own, parents) = (tree.upper_terms(j), tree.upper_terms(i));
-                if let Some((&(_, last), shared)) = parents.split_last() {
-                    for x in columns.iter_mut() {
-                        gather_pair(isa, x, (j, i), (None, None), (own, shared, last), factor);
-                    }
-                }
-                j = i;
+        let pair = tree
+            .parent(j)
+            .filter(|&i| pairs_fit(C) && tree.children[i] == 1)
+            .and_then(|i| Some((i, tree.upper_terms(i).split_last()?)));
+        if let Some((i, (&(_, last), shared))) = pair {
+            let terms = (tree.upper_terms(j), shared, last);
+            for x in columns.iter_mut() {
+                gather_pair(isa, x, (j, i), (None, None), terms, factor);
             }
-            _ => gather_row(isa, &mut columns, j, None, tree.upper_terms(j), factor),
+            j = i;
+        } else {
+            gather_row(isa, &mut columns, j, None, tree.upper_terms(j), factor);
         }
     }
     // Y = D⁻¹ Z and L X = Y, each row scaled as the second sweep reaches it.
@@ -234,7 +236,7 @@ fn lower_sweep<
     let mut k = 0;
     while k < N {
         // Row k + 1 below row k: its terms are k itself and then k's.
-        let pair = (pairs_fit(C) && k + 1 < N && tree.parent[k + 1] == Some(k))
+        let pair = (pairs_fit(C) && k + 1 < N && tree.parent(k + 1) == Some(k))
             .then(|| tree.lower_terms(k + 1).split_first())
             .flatten();
         if let Some((&(_, first), shared)) = pair {
@@ -277,14 +279,7 @@ fn gather_pair<T: Scalar, const WIDE: bool, const N: usize, const P: usize, cons
     let (Some(&l_last), true, true) = (factor.get(last), first < N, second < N) else {
         return;
     };
-    let (mut a0, mut a1) = (x[first], x[second]);
-    for (row, scale) in [(&mut a0, scales.0), (&mut a1, scales.1)] {
-        if let Some(s) = scale {
-            for c in 0..C {
-                row[c] *= s;
-            }
-        }
-    }
+    let (mut a0, mut a1) = (scaled(x[first], scales.0), scaled(x[second], scales.1));
     for (&(other, at0), &(_, at1)) in first_terms.iter().zip(shared) {
         if let (Some(&l0), Some(&l1), true) = (factor.get(at0), factor.get(at1), other < N) {
             for c in 0..C {
@@ -298,6 +293,17 @@ fn gather_pair<T: Scalar, const WIDE: bool, const N: usize, const P: usize, cons
     }
     x[first] = a0;
     x[second] = a1;
+}
+
+/// `row` times `scale`, if given.
+#[inline(always)]
+fn scaled<T: Scalar, const C: usize>(mut row: [T; C], scale: Option<T>) -> [T; C] {
+    if let Some(s) = scale {
+        for c in 0..C {
+            row[c] *= s;
+        }
+    }
+    row
 }
 
 /// A term of a row's sum: the other row, and where its L sits in the factor.
@@ -378,12 +384,7 @@ fn gather_rows<
     }
     let mut row = [[T::from_f64(0.0); C]; K];
     for m in 0..K {
-        row[m] = columns[m][r];
-        if let Some(s) = scale {
-            for c in 0..C {
-                row[m][c] *= s;
-            }
-        }
+        row[m] = scaled(columns[m][r], scale);
     }
     for &(other, at) in terms {
         if let (Some(&l), true) = (factor.get(at), other < N) {
