@@ -115,20 +115,21 @@ pub(crate) mod tests {
     }
 
     /// Two expansions of one matrix, `scalar` and `packed` (flattened by rows, `model.nv`
-    /// columns), take the same values at [`state`] (within 1e-12 relative), and the values
-    /// are not mostly zero.
+    /// columns), take the same values at [`state`] (within `tolerance` of the scalar
+    /// value), and the values are not mostly zero.
     pub(crate) fn assert_same_values(
         g: &crate::sym::Graph,
         model: &crate::model::Model,
         (scalar, packed): (&[crate::sym::Node], &[crate::sym::Node]),
         what: &str,
+        tolerance: impl Fn(f64) -> f64,
     ) {
         let value = state(model);
         let (want, got) = (g.eval(&value, scalar), g.eval(&value, packed));
         for (k, (w, x)) in want.iter().zip(&got).enumerate() {
             let (row, col) = (k / model.nv, k % model.nv);
             assert!(
-                (w - x).abs() < 1e-12 * (1.0 + w.abs()),
+                (w - x).abs() < tolerance(*w),
                 "{what}[{row}][{col}]: {x} packed, {w} not"
             );
         }
