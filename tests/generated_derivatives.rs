@@ -10,6 +10,9 @@
 //!   the q-columns are in the tangent space, as Pinocchio's) and along v, and M⁻¹ M = 1.
 
 use dynamics_runtime::{mechanism, Mechanism};
+use dynamics_tests::dual_derivatives::{
+    assert_derivatives_are_the_reference_dual_numbers, dual_reference_column, GeneratedDerivatives,
+};
 use dynamics_tests::free_tree;
 use dynamics_tests::into_twins::{assert_same, state};
 use serde::Deserialize;
@@ -401,30 +404,6 @@ fn derivatives_of_a_free_tree_are_the_dual_number_derivatives() {
             &state("∂q̈/∂v, reference at Dual"),
         );
     }
-}
-
-/// The ε parts of the runtime reference's τ (`inverse`, at the accelerations `a`) or q̈
-/// (at the forces `tau`) at dual-number inputs: one column of its derivatives.
-fn dual_reference_column<const N: usize>(
-    reference: &mut dynamics_runtime::Reference<dynamics_runtime::Dual<f64>>,
-    (q, v): (
-        &[dynamics_runtime::Dual<f64>],
-        &[dynamics_runtime::Dual<f64>],
-    ),
-    (a, tau): (
-        &[dynamics_runtime::Dual<f64>],
-        &[dynamics_runtime::Dual<f64>],
-    ),
-    inverse: bool,
-) -> [f64; N] {
-    let mut out = [dynamics_runtime::Dual::constant(0.0); N];
-    if inverse {
-        reference.inverse_dynamics(q, v, a, None, &mut out)
-    } else {
-        reference.forward_dynamics(q, v, tau, None, &mut out)
-    }
-    .expect("sizes");
-    out.map(|x| x.derivative)
 }
 
 /// Central differences in double-double arithmetic (about 32 digits): with a step of 1e-9
@@ -980,60 +959,12 @@ mechanism! {
 /// q ⊕ t e_j and v + t e_j, at states with velocities and accelerations.
 #[test]
 fn derivatives_of_a_biped_over_slots_are_the_reference_dual_numbers() {
-    use dynamics_runtime::{integrate_configuration, Dual, Mechanism, Reference};
-    type D = Dual<f64>;
-    const NQ: usize = 13;
-    const NV: usize = 12;
-    let model = BipedDerivatives::model();
-    let mut reference = Reference::<D>::new(&model);
-    let constant = |x: &[f64]| -> Vec<D> { x.iter().map(|&x| D::constant(x)).collect() };
-    for k in 0..4 {
-        let wave = |n: usize, f: f64, s: f64| -> Vec<f64> {
-            (0..n)
-                .map(|i| s * (f * (i + 3 * k) as f64 + 0.4).sin())
-                .collect()
-        };
-        let mut q: [f64; NQ] = wave(NQ, 0.7, 1.2).try_into().expect("NQ");
-        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-        q[3..7].iter_mut().for_each(|x| *x /= norm);
-        let v: [f64; NV] = wave(NV, 1.3, 2.0).try_into().expect("NV");
-        let a: [f64; NV] = wave(NV, 0.9, 3.0).try_into().expect("NV");
-        let tau = BipedDerivatives::inverse_dynamics(&q, &v, &a);
-        let (dtau_dq, dtau_dv) = BipedDerivatives::inverse_dynamics_derivatives(&q, &v, &a);
-        let (ddq_dq, ddq_dv) = BipedDerivatives::forward_dynamics_derivatives(&q, &v, &tau);
-        let (q_d, v_d) = (constant(&q), constant(&v));
-        let (a_d, tau_d) = (constant(&a), constant(&tau));
-        for col in 0..NV {
-            let mut unit = [0.0; NV];
-            unit[col] = 1.0;
-            let mut q_moved = [D::constant(0.0); NQ];
-            integrate_configuration(
-                &q_d,
-                &constant(&unit),
-                D::variable(0.0),
-                &[(0, 0)],
-                &mut q_moved,
-            );
-            let mut v_moved = v_d.clone();
-            v_moved[col] = D::variable(v[col]);
-            let mut column = |q_in: &[D], v_in: &[D], inverse: bool| {
-                dual_reference_column::<NV>(&mut reference, (q_in, v_in), (&a_d, &tau_d), inverse)
-            };
-            let expected = [
-                ("∂τ/∂q", column(&q_moved, &v_d, true), &dtau_dq, 1e-12),
-                ("∂τ/∂v", column(&q_d, &v_moved, true), &dtau_dv, 1e-12),
-                ("∂q̈/∂q", column(&q_moved, &v_d, false), &ddq_dq, 1e-11),
-                ("∂q̈/∂v", column(&q_d, &v_moved, false), &ddq_dv, 1e-11),
-            ];
-            for (what, want, got, tolerance) in expected {
-                for row in 0..NV {
-                    let (x, y) = (got[row][col], want[row]);
-                    assert!(
-                        (x - y).abs() <= tolerance * (1.0 + y.abs()),
-                        "state {k}, {what}[{row}][{col}]: generated {x}, reference {y}"
-                    );
-                }
-            }
-        }
-    }
+    assert_derivatives_are_the_reference_dual_numbers(
+        &BipedDerivatives::model(),
+        &GeneratedDerivatives::<13, 12> {
+            inverse_dynamics: BipedDerivatives::inverse_dynamics,
+            inverse_dynamics_derivatives: BipedDerivatives::inverse_dynamics_derivatives,
+            forward_dynamics_derivatives: BipedDerivatives::forward_dynamics_derivatives,
+        },
+    );
 }

@@ -163,13 +163,13 @@ fn documentation(model: &Model) -> Vec<String> {
     lines.push(" | --- | --- | --- | --- | --- |".into());
     for body in &model.bodies {
         let j = &body.joint;
-        let (kind, q, v) = match &j.kind {
-            JointKind::Revolute { axis_in_joint: a } => (
+        let (kind, q, v) = match &axis_as_declared(j) {
+            JointKind::Revolute { axis_in_body: a } => (
                 format!("revolute about [{}, {}, {}]", a[0], a[1], a[2]),
                 format!("q[{}]", j.idx_q),
                 format!("v[{}]", j.idx_v),
             ),
-            JointKind::Prismatic { axis_in_joint: a } => (
+            JointKind::Prismatic { axis_in_body: a } => (
                 format!("prismatic along [{}, {}, {}]", a[0], a[1], a[2]),
                 format!("q[{}]", j.idx_q),
                 format!("v[{}]", j.idx_v),
@@ -334,6 +334,26 @@ fn documentation(model: &Model) -> Vec<String> {
         }
     }
     lines
+}
+
+/// The joint with its axis as declared, in the joint frame. The tree's is in the body's
+/// frame, which `joint_frame_in_body` turns (`model::frame_turns`): about the axis, which
+/// keeps it, then by a half turn for a coordinate axis declared the negative way.
+fn axis_as_declared(j: &crate::model::Joint) -> crate::model::JointKind {
+    use crate::model::JointKind;
+    let (JointKind::Revolute { axis_in_body: a } | JointKind::Prismatic { axis_in_body: a }) =
+        j.kind
+    else {
+        return j.kind.clone();
+    };
+    match &j.joint_frame_in_body {
+        Some(turn) if a.iter().filter(|x| **x != 0.0).count() == 1 => {
+            j.kind.with_axis(std::array::from_fn(|i| {
+                (0..3).map(|k| turn[k][i] * a[k]).sum::<f64>().round()
+            }))
+        }
+        _ => j.kind.clone(),
+    }
 }
 
 /// The type's `# Functions` section: the functions generated, with their operation counts,

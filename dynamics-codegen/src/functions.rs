@@ -1229,7 +1229,50 @@ pub(crate) mod tests {
     /// dynamics' columns: M e_k = τ(q, 0, e_k) − τ(q, 0, 0).
     #[test]
     fn the_quadruped_s_legs_share_lanes_and_m_is_inverse_dynamics_by_columns() {
-        let mechanism: crate::syntax::Mechanism = syn::parse2(quadruped_tokens()).expect("parses");
+        assert_legs_share_lanes_and_m_is_inverse_dynamics_by_columns(quadruped_tokens());
+    }
+
+    /// Legs that are mirror images, declared about −x and −y where their twins turn about
+    /// +x and +y (as ANYmal's are), share lanes as well: each such body's frame takes a half
+    /// turn (`model::frame_turns::axis_half_turn`), so every leg turns about +x, +y, +y.
+    #[test]
+    fn mirror_image_legs_share_lanes_too() {
+        assert_legs_share_lanes_and_m_is_inverse_dynamics_by_columns(quote! {
+            struct Mirrored;
+            outputs: [inverse_dynamics, mass_matrix];
+            body torso { mass: 20.0, com: [0.01, 0.0, 0.02], inertia: diag([0.3, 0.6, 0.7]) }
+            joint base: free(ground -> torso);
+            body hip_lf { mass: 1.5, com: [0.05, 0.02, 0.0], inertia: [[0.002, 0.0001, 0.0], [0.0001, 0.003, 0.0], [0.0, 0.0, 0.003]] }
+            body thigh_lf { mass: 1.2, com: [0.0, 0.03, -0.1], inertia: diag([0.01, 0.011, 0.002]) }
+            body shank_lf { mass: 0.4, com: [0.0, 0.0, -0.12], inertia: diag([0.004, 0.004, 0.0005]) }
+            joint haa_lf: revolute(torso -> hip_lf) { axis: [1.0, 0.0, 0.0], at: [0.28, 0.1, 0.0] }
+            joint hfe_lf: revolute(hip_lf -> thigh_lf) { axis: [0.0, 1.0, 0.0], at: [0.06, 0.05, 0.0] }
+            joint kfe_lf: revolute(thigh_lf -> shank_lf) { axis: [0.0, 1.0, 0.0], at: [0.0, 0.02, -0.28] }
+            body hip_rf { mass: 1.5, com: [0.05, -0.02, 0.0], inertia: [[0.002, -0.0001, 0.0], [-0.0001, 0.003, 0.0], [0.0, 0.0, 0.003]] }
+            body thigh_rf { mass: 1.2, com: [0.0, -0.03, -0.1], inertia: diag([0.01, 0.011, 0.002]) }
+            body shank_rf { mass: 0.4, com: [0.0, 0.0, -0.12], inertia: diag([0.004, 0.004, 0.0005]) }
+            joint haa_rf: revolute(torso -> hip_rf) { axis: [-1.0, 0.0, 0.0], at: [0.28, -0.1, 0.0] }
+            joint hfe_rf: revolute(hip_rf -> thigh_rf) { axis: [0.0, -1.0, 0.0], at: [0.06, -0.05, 0.0] }
+            joint kfe_rf: revolute(thigh_rf -> shank_rf) { axis: [0.0, -1.0, 0.0], at: [0.0, -0.02, -0.28] }
+            body hip_lh { mass: 1.4, com: [-0.05, 0.02, 0.0], inertia: [[0.002, -0.0001, 0.0], [-0.0001, 0.003, 0.0], [0.0, 0.0, 0.003]] }
+            body thigh_lh { mass: 1.2, com: [0.0, 0.03, -0.1], inertia: diag([0.01, 0.011, 0.002]) }
+            body shank_lh { mass: 0.45, com: [0.0, 0.0, -0.12], inertia: diag([0.004, 0.004, 0.0005]) }
+            joint haa_lh: revolute(torso -> hip_lh) { axis: [-1.0, 0.0, 0.0], at: [-0.28, 0.1, 0.0] }
+            joint hfe_lh: revolute(hip_lh -> thigh_lh) { axis: [0.0, 1.0, 0.0], at: [-0.06, 0.05, 0.0] }
+            joint kfe_lh: revolute(thigh_lh -> shank_lh) { axis: [0.0, 1.0, 0.0], at: [0.0, 0.02, -0.28] }
+            body hip_rh { mass: 1.4, com: [-0.05, -0.02, 0.0], inertia: [[0.002, 0.0001, 0.0], [0.0001, 0.003, 0.0], [0.0, 0.0, 0.003]] }
+            body thigh_rh { mass: 1.2, com: [0.0, -0.03, -0.1], inertia: diag([0.01, 0.011, 0.002]) }
+            body shank_rh { mass: 0.45, com: [0.0, 0.0, -0.12], inertia: diag([0.004, 0.004, 0.0005]) }
+            joint haa_rh: revolute(torso -> hip_rh) { axis: [1.0, 0.0, 0.0], at: [-0.28, -0.1, 0.0] }
+            joint hfe_rh: revolute(hip_rh -> thigh_rh) { axis: [0.0, -1.0, 0.0], at: [-0.06, -0.05, 0.0] }
+            joint kfe_rh: revolute(thigh_rh -> shank_rh) { axis: [0.0, -1.0, 0.0], at: [0.0, -0.02, -0.28] }
+        });
+    }
+
+    /// [`the_quadruped_s_legs_share_lanes_and_m_is_inverse_dynamics_by_columns`] for the
+    /// quadruped declared by `tokens`.
+    fn assert_legs_share_lanes_and_m_is_inverse_dynamics_by_columns(tokens: TokenStream) {
+        let mechanism: crate::syntax::Mechanism = syn::parse2(tokens.clone()).expect("parses");
         let model = crate::model::lower(&mechanism).expect("valid");
         let slots = crate::expand::slots::Slots::of(&model);
         let lanes: Vec<usize> = slots.slots.iter().map(|s| s.lanes.len()).collect();
@@ -1238,7 +1281,7 @@ pub(crate) mod tests {
             [1, 4, 4, 4],
             "the base, then hips, thighs and calves side by side"
         );
-        let functions = compile(quadruped_tokens());
+        let functions = compile(tokens);
         let find = |name: &str| {
             functions
                 .iter()

@@ -9,6 +9,7 @@ use proptest::prelude::*;
 use serde::Deserialize;
 
 mod default_functions;
+pub mod dual_derivatives;
 pub mod into_twins;
 mod split_mix;
 

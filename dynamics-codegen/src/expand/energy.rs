@@ -39,13 +39,13 @@ pub fn kinetic(
             v_parent.add(g, omega_parent.cross(g, t.origin_in_parent)),
         );
         let (omega, v) = match body.joint.kind {
-            JointKind::Revolute { axis_in_joint } => (
-                omega_in.add(g, Vec3::constant(g, axis_in_joint).scale(g, velocity[k])),
+            JointKind::Revolute { axis_in_body } => (
+                omega_in.add(g, Vec3::constant(g, axis_in_body).scale(g, velocity[k])),
                 v_in,
             ),
-            JointKind::Prismatic { axis_in_joint } => (
+            JointKind::Prismatic { axis_in_body } => (
                 omega_in,
-                v_in.add(g, Vec3::constant(g, axis_in_joint).scale(g, velocity[k])),
+                v_in.add(g, Vec3::constant(g, axis_in_body).scale(g, velocity[k])),
             ),
             JointKind::Free => (
                 omega_in.add(

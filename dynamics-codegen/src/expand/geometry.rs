@@ -153,16 +153,16 @@ pub fn joint_transforms(g: &Graph, model: &Model) -> Vec<JointTransform> {
             let offset = vector(g, &joint.translation_in_parent);
             let q = |k: usize| g.input(Array::Q, joint.idx_q + k);
             match joint.kind {
-                JointKind::Revolute { axis_in_joint } => {
+                JointKind::Revolute { axis_in_body } => {
                     let angle = q(0);
-                    let motion = axis_rotation(g, axis_in_joint, g.sin(angle), g.cos(angle));
+                    let motion = axis_rotation(g, axis_in_body, g.sin(angle), g.cos(angle));
                     JointTransform {
                         rotation_to_parent: placement.mul(g, motion),
                         origin_in_parent: offset,
                     }
                 }
-                JointKind::Prismatic { axis_in_joint } => {
-                    let slide = Vec3::constant(g, axis_in_joint).scale(g, q(0));
+                JointKind::Prismatic { axis_in_body } => {
+                    let slide = Vec3::constant(g, axis_in_body).scale(g, q(0));
                     JointTransform {
                         rotation_to_parent: placement,
                         origin_in_parent: offset.add(g, placement.mul_vec(g, slide)),

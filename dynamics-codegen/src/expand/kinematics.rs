@@ -145,9 +145,9 @@ fn subtree_masses_and_moments(
 }
 
 /// A joint axis given in the joint (= body) frame, in world coordinates.
-fn axis_in_world(g: &Graph, pose: &Pose, axis_in_joint: [f64; 3]) -> Vec3 {
+fn axis_in_world(g: &Graph, pose: &Pose, axis_in_body: [f64; 3]) -> Vec3 {
     pose.rotation_in_world
-        .mul_vec(g, Vec3::constant(g, axis_in_joint))
+        .mul_vec(g, Vec3::constant(g, axis_in_body))
 }
 
 /// 1 / M, the reciprocal of the total mass (a number when the masses are).
@@ -191,12 +191,12 @@ pub fn center_of_mass_jacobian(
         let about_joint = moment[j].sub(g, pose.origin_in_world.scale(g, mass[j]));
         let k = body.joint.idx_v;
         match body.joint.kind {
-            JointKind::Revolute { axis_in_joint } => {
-                let axis = axis_in_world(g, pose, axis_in_joint);
+            JointKind::Revolute { axis_in_body } => {
+                let axis = axis_in_world(g, pose, axis_in_body);
                 columns[k] = axis.cross(g, about_joint);
             }
-            JointKind::Prismatic { axis_in_joint } => {
-                let axis = axis_in_world(g, pose, axis_in_joint);
+            JointKind::Prismatic { axis_in_body } => {
+                let axis = axis_in_world(g, pose, axis_in_body);
                 columns[k] = axis.scale(g, mass[j]);
             }
             JointKind::Free => {
@@ -236,12 +236,12 @@ pub fn point_jacobian_columns(
         let lever = point.sub(g, pose.origin_in_world);
         let k = joint.idx_v;
         match joint.kind {
-            JointKind::Revolute { axis_in_joint } => {
-                let axis = axis_in_world(g, pose, axis_in_joint);
+            JointKind::Revolute { axis_in_body } => {
+                let axis = axis_in_world(g, pose, axis_in_body);
                 columns[k] = Some((axis.cross(g, lever), axis));
             }
-            JointKind::Prismatic { axis_in_joint } => {
-                let axis = axis_in_world(g, pose, axis_in_joint);
+            JointKind::Prismatic { axis_in_body } => {
+                let axis = axis_in_world(g, pose, axis_in_body);
                 columns[k] = Some((axis, Vec3::zero(g)));
             }
             JointKind::Free => {
@@ -309,11 +309,11 @@ pub fn world_jacobian_columns(g: &Graph, model: &Model, poses: &[Pose]) -> Vec<S
         let about_origin = |axis: Vec3| (pose.origin_in_world.cross(g, axis), axis);
         let k = body.joint.idx_v;
         match body.joint.kind {
-            JointKind::Revolute { axis_in_joint } => {
-                columns[k] = about_origin(axis_in_world(g, pose, axis_in_joint));
+            JointKind::Revolute { axis_in_body } => {
+                columns[k] = about_origin(axis_in_world(g, pose, axis_in_body));
             }
-            JointKind::Prismatic { axis_in_joint } => {
-                columns[k] = (axis_in_world(g, pose, axis_in_joint), Vec3::zero(g));
+            JointKind::Prismatic { axis_in_body } => {
+                columns[k] = (axis_in_world(g, pose, axis_in_body), Vec3::zero(g));
             }
             JointKind::Free => {
                 for e in 0..3 {
@@ -437,12 +437,12 @@ pub fn body_velocities(
         };
         let k = body.joint.idx_v;
         match body.joint.kind {
-            JointKind::Revolute { axis_in_joint } => {
-                let axis = axis_in_world(g, pose, axis_in_joint);
+            JointKind::Revolute { axis_in_body } => {
+                let axis = axis_in_world(g, pose, axis_in_body);
                 angular = angular.add(g, axis.scale(g, velocity[k]));
             }
-            JointKind::Prismatic { axis_in_joint } => {
-                let axis = axis_in_world(g, pose, axis_in_joint);
+            JointKind::Prismatic { axis_in_body } => {
+                let axis = axis_in_world(g, pose, axis_in_body);
                 linear = linear.add(g, axis.scale(g, velocity[k]));
             }
             JointKind::Free => {
@@ -511,16 +511,16 @@ pub fn motions_in_world(
         };
         let k = body.joint.idx_v;
         match body.joint.kind {
-            JointKind::Revolute { axis_in_joint } => {
-                let axis = axis_in_world(g, pose, axis_in_joint);
+            JointKind::Revolute { axis_in_body } => {
+                let axis = axis_in_world(g, pose, axis_in_body);
                 let spin = axis.scale(g, velocity[k]);
                 alpha = alpha
                     .add(g, omega.cross(g, spin))
                     .add(g, axis.scale(g, acceleration[k]));
                 omega = omega.add(g, spin);
             }
-            JointKind::Prismatic { axis_in_joint } => {
-                let axis = axis_in_world(g, pose, axis_in_joint);
+            JointKind::Prismatic { axis_in_body } => {
+                let axis = axis_in_world(g, pose, axis_in_body);
                 let slide = axis.scale(g, velocity[k]);
                 let coriolis = omega.cross(g, slide);
                 accel = accel

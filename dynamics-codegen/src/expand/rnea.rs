@@ -299,11 +299,11 @@ pub(crate) fn joint_force(
 ) {
     let k = joint.idx_v;
     match joint.kind {
-        JointKind::Revolute { axis_in_joint } => {
-            tau[k] = Vec3::constant(g, axis_in_joint).dot(g, moment);
+        JointKind::Revolute { axis_in_body } => {
+            tau[k] = Vec3::constant(g, axis_in_body).dot(g, moment);
         }
-        JointKind::Prismatic { axis_in_joint } => {
-            tau[k] = Vec3::constant(g, axis_in_joint).dot(g, force);
+        JointKind::Prismatic { axis_in_body } => {
+            tau[k] = Vec3::constant(g, axis_in_body).dot(g, force);
         }
         JointKind::Free => {
             for j in 0..3 {
@@ -364,8 +364,8 @@ pub(crate) fn forward(
     let transported = parent.accel.add(g, parent.relative_accel.mul_vec(g, r));
     let accel_in = geometry::to_body(g, t, transported);
     match joint.kind {
-        JointKind::Revolute { axis_in_joint } => {
-            let s = Vec3::constant(g, axis_in_joint);
+        JointKind::Revolute { axis_in_body } => {
+            let s = Vec3::constant(g, axis_in_body);
             let spin = s.scale(g, qd(0));
             let omega = omega_in.add(g, spin);
             let alpha = alpha_in
@@ -373,8 +373,8 @@ pub(crate) fn forward(
                 .add(g, omega_in.cross(g, spin));
             BodyMotion::new(g, omega, alpha, accel_in)
         }
-        JointKind::Prismatic { axis_in_joint } => {
-            let s = Vec3::constant(g, axis_in_joint);
+        JointKind::Prismatic { axis_in_body } => {
+            let s = Vec3::constant(g, axis_in_body);
             let slide = s.scale(g, qd(0));
             let two = g.constant(2.0);
             let accel = accel_in

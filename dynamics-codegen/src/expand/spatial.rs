@@ -68,11 +68,11 @@ pub fn congruence(g: &Graph, m: Mat3, s: Mat3) -> Mat3 {
 /// The motion subspace of a joint: one [v; ω] column per velocity coordinate.
 pub fn motion_subspace(g: &Graph, kind: &JointKind) -> Vec<(Vec3, Vec3)> {
     match kind {
-        JointKind::Revolute { axis_in_joint } => {
-            vec![(Vec3::zero(g), Vec3::constant(g, *axis_in_joint))]
+        JointKind::Revolute { axis_in_body } => {
+            vec![(Vec3::zero(g), Vec3::constant(g, *axis_in_body))]
         }
-        JointKind::Prismatic { axis_in_joint } => {
-            vec![(Vec3::constant(g, *axis_in_joint), Vec3::zero(g))]
+        JointKind::Prismatic { axis_in_body } => {
+            vec![(Vec3::constant(g, *axis_in_body), Vec3::zero(g))]
         }
         JointKind::Free => (0..6)
             .map(|k| {

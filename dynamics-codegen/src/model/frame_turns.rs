@@ -87,6 +87,31 @@ pub(crate) fn best_turn(
     best.1
 }
 
+/// The half turn H about e_(k+1) for an axis s = −e_k along a coordinate axis the negative
+/// way, `None` for any other axis. H is its own inverse and H s = e_k, so
+///
+/// ```text
+/// R_p Rot(s, q) H = (R_p H) Rot(e_k, q)        (H Rot(e_k, q) Hᵀ = Rot(H e_k, q) = Rot(s, q))
+/// ```
+///
+/// and a prismatic joint's slide R_p s q = (R_p H) e_k q: the body may use the frame B'
+/// (x_B = H x_B') with the placement R_p H and the axis e_k, everything on it re-expressed
+/// by Hᵀ, and the coordinate is the same. H only changes signs, so no entry that was zero
+/// becomes nonzero. Limbs that are mirror images (ANYmal's legs turn about +x and −x) then
+/// have the same joints and are packed side by side (`expand::slots`).
+pub(crate) fn axis_half_turn(axis: [f64; 3]) -> Option<Matrix3> {
+    let mut nonzero = axis.iter().enumerate().filter(|(_, a)| **a != 0.0);
+    let (k, &along) = nonzero.next()?;
+    if nonzero.next().is_some() || along > 0.0 {
+        return None;
+    }
+    let mut half_turn = [[0.0; 3]; 3];
+    for (i, row) in half_turn.iter_mut().enumerate() {
+        row[i] = if i == (k + 1) % 3 { 1.0 } else { -1.0 };
+    }
+    Some(half_turn)
+}
+
 /// Rot(s, φ) for a unit axis s: the explicit matrix for a coordinate axis (so that the
 /// entry on s is exactly 1), Rodrigues' formula otherwise. The same rotation as
 /// `linear::rotation_from_axis_angle`, rounded differently about a general axis; the turns

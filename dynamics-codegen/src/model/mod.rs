@@ -340,15 +340,17 @@ pub struct Parameter {
 /// The motion a moving joint allows.
 #[derive(Clone, Debug, PartialEq)]
 pub enum JointKind {
-    /// Rotation about a unit axis of the joint frame.
+    /// Rotation about a unit axis fixed in the body (and in the joint frame).
     Revolute {
-        /// Unit axis in the joint frame.
-        axis_in_joint: [f64; 3],
+        /// Unit axis in the tree body's frame: the declared axis, in the joint frame, unless
+        /// the frame took a half turn (`Joint::joint_frame_in_body`), which makes an axis
+        /// declared along −x, −y or −z point along +x, +y or +z.
+        axis_in_body: [f64; 3],
     },
-    /// Translation along a unit axis of the joint frame.
+    /// Translation along a unit axis fixed in the body (and in the joint frame).
     Prismatic {
-        /// Unit axis in the joint frame.
-        axis_in_joint: [f64; 3],
+        /// Unit axis in the tree body's frame, as for [`JointKind::Revolute`].
+        axis_in_body: [f64; 3],
     },
     /// A free-floating base (q: position + unit quaternion, scalar last; v: [v_P; ω] in
     /// the body frame).
@@ -363,6 +365,16 @@ impl JointKind {
         match self {
             JointKind::Free => 6,
             JointKind::Revolute { .. } | JointKind::Prismatic { .. } => 1,
+        }
+    }
+
+    /// The same kind of joint about (or along) `axis`; a free joint stays free.
+    #[must_use]
+    pub fn with_axis(&self, axis: [f64; 3]) -> JointKind {
+        match self {
+            JointKind::Revolute { .. } => JointKind::Revolute { axis_in_body: axis },
+            JointKind::Prismatic { .. } => JointKind::Prismatic { axis_in_body: axis },
+            JointKind::Free => JointKind::Free,
         }
     }
 }
@@ -413,9 +425,11 @@ pub struct Joint {
     pub translation_in_parent: Vec3,
     /// The rotation from the joint frame after the motion (the body frame as declared:
     /// Pinocchio's joint frame) to the tree body's frame: `None` when they are the same,
-    /// else a constant turn about the joint's axis that makes the placements sparser (see
-    /// `frame_turns`). `rotation_in_parent` already includes it; outputs that report the
-    /// joint frame (placements, reactions) turn back with it.
+    /// else a constant turn about the joint's axis that makes the placements sparser, then
+    /// a half turn that makes an axis pointing the negative way along a coordinate axis
+    /// point the positive way (see `frame_turns`). `rotation_in_parent` already includes
+    /// it, and `kind`'s axis is in the tree body's frame; outputs that report the joint
+    /// frame (placements, reactions) turn back with it.
     pub joint_frame_in_body: Option<[[f64; 3]; 3]>,
     /// Rotor inertia reflected to each coordinate.
     pub armature: Value,

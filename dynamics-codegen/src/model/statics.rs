@@ -263,8 +263,8 @@ pub(crate) fn build(
             closes_loop: false,
         });
         match joint.kind {
-            JointKind::Revolute { axis_in_joint } => {
-                let axis = rotate(&r, axis_in_joint);
+            JointKind::Revolute { axis_in_body } => {
+                let axis = rotate(&r, axis_in_body);
                 if plane == Plane::Planar {
                     planar_rotation(&joint.name, "revolute", &r, span, d);
                 }
@@ -273,8 +273,8 @@ pub(crate) fn build(
                     b.push("torque", Component::Couple, axis, true);
                 }
             }
-            JointKind::Prismatic { axis_in_joint } => {
-                let axis = rotate(&r, axis_in_joint);
+            JointKind::Prismatic { axis_in_body } => {
+                let axis = rotate(&r, axis_in_body);
                 if plane == Plane::Planar {
                     planar_rotation(&joint.name, "prismatic", &r, span, d);
                     direction_in_plane(&joint.name, "axis", axis, span, d);

@@ -207,6 +207,53 @@ fn a_frame_turned_about_its_axis_and_back_is_placed_by_a_signed_permutation() {
     );
 }
 
+/// A joint declared about a coordinate axis the negative way (−y here) turns its body's
+/// frame by a half turn about the next axis (z), so that the tree's axis is +y: the
+/// placement and everything on the body change signs only, and the joint frame as
+/// declared is the half turn back. A joint about +y, or about a general axis, keeps its
+/// frame.
+#[test]
+fn an_axis_declared_the_negative_way_is_turned_to_point_the_positive_way() {
+    let m = lower_tokens(quote! {
+            struct Legs;
+            body a { mass: 1.0, com: [0.05, 0.01, 0.02], inertia: [[0.01, 0.001, 0.0], [0.001, 0.02, 0.0], [0.0, 0.0, 0.03]] }
+            body b { mass: 1.0, com: [0.05, 0.01, 0.02], inertia: diag([0.01, 0.02, 0.03]) }
+            body c { mass: 1.0, com: [0.05, 0.01, 0.02], inertia: diag([0.01, 0.02, 0.03]) }
+            joint ja: revolute(ground -> a) { axis: [0.0, -1.0, 0.0], at: [0.3, 0.1, 0.0] }
+            joint jb: revolute(a -> b) { axis: y, at: [0.0, 0.2, 0.1] }
+            joint jc: revolute(b -> c) { axis: [0.0, -0.6, 0.8], at: [0.0, 0.0, 0.3] }
+    })
+    .expect("valid");
+    let half_turn_about_z = [[-1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0]];
+    let a = &m.bodies[0];
+    assert_eq!(
+        a.joint.kind,
+        JointKind::Revolute {
+            axis_in_body: [0.0, 1.0, 0.0]
+        }
+    );
+    assert_eq!(a.joint.joint_frame_in_body, Some(half_turn_about_z));
+    assert_eq!(a.joint.rotation_in_parent, half_turn_about_z);
+    assert_eq!(
+        value::nominal3(&a.parts[0].com_in_body, &[]),
+        [-0.05, -0.01, 0.02]
+    );
+    // b's joint, on a's frame, is placed by the same half turn; b's own frame is kept.
+    let b = &m.bodies[1].joint;
+    assert_eq!(b.rotation_in_parent, half_turn_about_z);
+    assert_eq!(
+        value::nominal3(&b.translation_in_parent, &[]),
+        [0.0, -0.2, 0.1]
+    );
+    assert_eq!(b.joint_frame_in_body, None);
+    assert_eq!(
+        m.bodies[2].joint.kind,
+        JointKind::Revolute {
+            axis_in_body: [0.0, -0.6, 0.8]
+        }
+    );
+}
+
 /// A matrix printed by a tool that computed a quarter turn from angles (Pinocchio's Panda):
 /// its 2.2e-16 residues become exact zeros, other entries stay as written (j2 turns about
 /// x, so no turn of its frame about its axis could clear them).
@@ -821,12 +868,12 @@ fn a_huge_axis_is_a_unit_axis() {
     .expect("valid");
     let h = std::f64::consts::FRAC_1_SQRT_2;
     match m.bodies[0].joint.kind {
-        JointKind::Revolute { axis_in_joint } => {
+        JointKind::Revolute { axis_in_body } => {
             assert!(
-                axis_in_joint[0] == 0.0 && (axis_in_joint[1] - h).abs() < 1e-15,
-                "{axis_in_joint:?}"
+                axis_in_body[0] == 0.0 && (axis_in_body[1] - h).abs() < 1e-15,
+                "{axis_in_body:?}"
             );
-            assert_eq!(axis_in_joint[1], axis_in_joint[2]);
+            assert_eq!(axis_in_body[1], axis_in_body[2]);
         }
         ref other => panic!("{other:?}"),
     }
@@ -1130,7 +1177,7 @@ fn standard_and_modified_dh_tables_lower_to_the_same_tree() {
     assert_eq!(
         standard.bodies[1].joint.kind,
         JointKind::Prismatic {
-            axis_in_joint: [0.0, 0.0, 1.0]
+            axis_in_body: [0.0, 0.0, 1.0]
         }
     );
     assert_eq!(

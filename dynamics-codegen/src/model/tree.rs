@@ -9,7 +9,10 @@
 //!
 //! A moving body's tree frame is its joint frame after the motion, turned about the joint's
 //! axis where [`super::frame_turns`] finds that the turn makes the placements and the
-//! inertia sparser; everything on the body is re-based by that turn as by a weld.
+//! inertia sparser, then by a half turn where the axis points the negative way along a
+//! coordinate axis (`frame_turns::axis_half_turn`: the axis is then +x, +y or +z, so that
+//! mirror-image limbs have the same joints); everything on the body is re-based by that turn
+//! as by a weld.
 
 use super::frame_turns;
 use super::linear::{self, Matrix3, Vector3};
@@ -104,10 +107,10 @@ pub(crate) fn build(
                 continue;
             }
             (Declared::Revolute, Some((axis, _))) => JointKind::Revolute {
-                axis_in_joint: unit(axis),
+                axis_in_body: unit(axis),
             },
             (Declared::Prismatic, Some((axis, _))) => JointKind::Prismatic {
-                axis_in_joint: unit(axis),
+                axis_in_body: unit(axis),
             },
             (Declared::Free, _) => JointKind::Free,
             (Declared::Revolute | Declared::Prismatic, None) => return None,
@@ -122,7 +125,7 @@ pub(crate) fn build(
         // placements sparser (see `super::frame_turns`). A turn Rot(s, φ) joins the joint's
         // placement, and everything on the body is re-expressed by Rot(s, φ)ᵀ.
         let turn = match &kind {
-            JointKind::Revolute { axis_in_joint } | JointKind::Prismatic { axis_in_joint }
+            JointKind::Revolute { axis_in_body } | JointKind::Prismatic { axis_in_body }
                 if turns_allowed =>
             {
                 let (below, mass) = turn_inputs(
@@ -133,9 +136,29 @@ pub(crate) fn build(
                     (frame_rotation, nominal3(&frame_translation, &nominal)),
                     &nominal,
                 );
-                frame_turns::best_turn(*axis_in_joint, &rotation, &below, &mass)
+                frame_turns::best_turn(*axis_in_body, &rotation, &below, &mass)
             }
             _ => None,
+        };
+        // An axis along a coordinate axis the negative way is made positive by a half turn
+        // of the frame (`frame_turns::axis_half_turn`), after the turn about it.
+        let (kind, half_turn) = match kind {
+            JointKind::Revolute { axis_in_body } | JointKind::Prismatic { axis_in_body }
+                if turns_allowed =>
+            {
+                match frame_turns::axis_half_turn(axis_in_body) {
+                    Some(h) => (
+                        kind.with_axis(linear::mul_vector(&h, &axis_in_body)),
+                        Some(h),
+                    ),
+                    None => (kind, None),
+                }
+            }
+            _ => (kind, None),
+        };
+        let turn = match (turn, half_turn) {
+            (Some(t), Some(h)) => Some(linear::mul(&t, &h)),
+            (t, h) => t.or(h),
         };
         let joint_frame_in_body = turn.map(|t| linear::transpose(&t));
         let (rotation, frame_rotation, frame_translation) = match &joint_frame_in_body {
@@ -497,8 +520,8 @@ fn poses(bodies: &[Body], p: &[f64], angles: impl Fn(usize) -> f64) -> Vec<(Matr
             &linear::mul_vector(&r_parent, &nominal3(&j.translation_in_parent, p)),
         );
         out.push(match j.kind {
-            JointKind::Revolute { axis_in_joint } => {
-                let axis = linear::normalize(&axis_in_joint);
+            JointKind::Revolute { axis_in_body } => {
+                let axis = linear::normalize(&axis_in_body);
                 (
                     linear::mul(
                         &r_joint,
@@ -507,11 +530,11 @@ fn poses(bodies: &[Body], p: &[f64], angles: impl Fn(usize) -> f64) -> Vec<(Matr
                     o_joint,
                 )
             }
-            JointKind::Prismatic { axis_in_joint } => (
+            JointKind::Prismatic { axis_in_body } => (
                 r_joint,
                 linear::add_vectors(
                     &o_joint,
-                    &linear::scale_vector(&linear::mul_vector(&r_joint, &axis_in_joint), angles(i)),
+                    &linear::scale_vector(&linear::mul_vector(&r_joint, &axis_in_body), angles(i)),
                 ),
             ),
             JointKind::Free => (r_joint, o_joint),
@@ -553,8 +576,8 @@ fn check_coordinates_have_inertia(
         for (j, &(mass, first_moment, inertia_about_origin)) in subtrees.iter().enumerate() {
             let r_j = world[j].0;
             let moment = match bodies[j].joint.kind {
-                JointKind::Revolute { axis_in_joint } => {
-                    let a = linear::mul_vector(&r_j, &axis_in_joint);
+                JointKind::Revolute { axis_in_body } => {
+                    let a = linear::mul_vector(&r_j, &axis_in_body);
                     linear::dot(&linear::vector_mul(&a, &inertia_about_origin), &a)
                 }
                 JointKind::Prismatic { .. } => 0.0,

@@ -381,14 +381,14 @@ pub(crate) fn movable_shares(g: &Graph, joint: &model::Joint, inertia: &BodyIner
     }
     let zero = g.zero();
     match joint.kind {
-        JointKind::Revolute { axis_in_joint } => {
-            let s = Vec3::constant(g, axis_in_joint);
+        JointKind::Revolute { axis_in_body } => {
+            let s = Vec3::constant(g, axis_in_body);
             let along = s.scale(g, s.dot(g, inertia.first_moment));
             let across =
                 Mat3::identity(g).sub(g, Mat3::from_rows([0, 1, 2].map(|i| s.scale(g, s.get(i)))));
             let mut ys = vec![zero];
-            if axis_in_joint.iter().filter(|a| **a != 0.0).count() == 1 {
-                let k = axis_in_joint.iter().position(|a| *a != 0.0).unwrap_or(2);
+            if axis_in_body.iter().filter(|a| **a != 0.0).count() == 1 {
+                let k = axis_in_body.iter().position(|a| *a != 0.0).unwrap_or(2);
                 for i in [(k + 1) % 3, (k + 2) % 3] {
                     let y = inertia.inertia_about_origin.get(i, i);
                     if y != zero && !ys.contains(&y) {
