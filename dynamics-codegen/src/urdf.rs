@@ -151,16 +151,23 @@ pub fn import(
                 continue;
             }
         };
-        if let Some(mimicked) = &joint.mimic {
+        if let (Some(mimicked), true) = (&joint.mimic, source.mimic) {
             refuse(format!(
-                "joint `{}` mimics joint `{mimicked}`; mimic joints are not supported (declare it \
-                 as an independent joint or make it fixed)",
+                "joint `{}` mimics joint `{mimicked}`; mimic joints are not supported \
+                 (`urdf_mimic: false;` makes each an independent coordinate, as Pinocchio's \
+                 buildModel does by default; or make it fixed)",
                 joint.name
             ));
             continue;
         }
         let moving = matches!(kind, JointKind::Revolute | JointKind::Prismatic);
         let mut docs = vec![format!(" Joint `{}` of `{written}`.", joint.name)];
+        if let Some(mimicked) = &joint.mimic {
+            docs.push(format!(
+                " Its URDF `<mimic joint=\"{mimicked}\">` is ignored (`urdf_mimic: false;`): an \
+                 independent coordinate, as in Pinocchio's `buildModel`."
+            ));
+        }
         if joint.kind == JointType::Continuous {
             docs.push(
                 " A URDF `continuous` joint: one coordinate here, the angle θ (Pinocchio has \
@@ -855,13 +862,23 @@ mod tests {
 
     /// Imports `text` as a URDF file written into a fresh temporary directory.
     fn import_text(test: &str, text: &str) -> syn::Result<syntax::Mechanism> {
+        import_text_with(test, text, quote!())
+    }
+
+    /// [`import_text`] with `settings` after the `urdf:` setting.
+    fn import_text_with(
+        test: &str,
+        text: &str,
+        settings: proc_macro2::TokenStream,
+    ) -> syn::Result<syntax::Mechanism> {
         let dir = std::env::temp_dir().join(format!(
             "dynamics-codegen-urdf-{test}-{}",
             std::process::id()
         ));
         std::fs::create_dir_all(&dir).expect("temporary directory");
         std::fs::write(dir.join("robot.urdf"), text).expect("write URDF");
-        let mut m: syntax::Mechanism = syn::parse2(quote! { struct R; urdf: "robot.urdf"; })?;
+        let mut m: syntax::Mechanism =
+            syn::parse2(quote! { struct R; urdf: "robot.urdf"; #settings })?;
         let result = import(&mut m, &dir);
         std::fs::remove_dir_all(&dir).expect("remove temporary directory");
         result.map(|_| m)
@@ -1338,12 +1355,48 @@ mod tests {
             messages,
             [
                 "URDF file `robot.urdf`: joint `b` mimics joint `a`; mimic joints are not \
-                 supported (declare it as an independent joint or make it fixed)",
+                 supported (`urdf_mimic: false;` makes each an independent coordinate, as \
+                 Pinocchio's buildModel does by default; or make it fixed)",
                 "URDF file `robot.urdf`: joint `c` is a `floating` joint, which is not supported \
                  inside the tree; for a floating root link, leave its joint out of the file and \
                  declare `floating_base: true;` (the root link then gets a free joint `root_joint`)",
             ]
         );
+    }
+
+    /// `urdf_mimic: false;` imports a mimic joint as an independent coordinate (Pinocchio's
+    /// `buildModel` without its `mimic` flag), saying so in the joint's docs.
+    #[test]
+    fn urdf_mimic_false_makes_a_mimic_joint_independent() {
+        let text = format!(
+            r#"<robot name="r"><link name="base"/>{}{}
+               <joint name="a" type="prismatic"><parent link="base"/><child link="x"/>
+                 <axis xyz="0 1 0"/><limit lower="0" upper="0.04" effort="20" velocity="0.2"/></joint>
+               <joint name="b" type="prismatic"><parent link="base"/><child link="y"/>
+                 <axis xyz="0 -1 0"/><limit lower="0" upper="0.04" effort="20" velocity="0.2"/>
+                 <mimic joint="a" multiplier="1"/></joint>
+               </robot>"#,
+            link("x"),
+            link("y")
+        );
+        assert!(import_text("mimic-refused", &text).is_err());
+        let m = import_text_with("mimic-independent", &text, quote!(urdf_mimic: false;))
+            .expect("imports");
+        let b = m
+            .joints
+            .iter()
+            .find(|j| j.name.text == "b")
+            .expect("joint b");
+        assert_eq!(b.kind, syntax::JointKind::Prismatic);
+        assert!(
+            b.docs
+                .iter()
+                .any(|d| d.contains("`<mimic joint=\"a\">` is ignored")),
+            "{:?}",
+            b.docs
+        );
+        let model = crate::model::lower(&m).expect("valid");
+        assert_eq!((model.nq, model.nv), (2, 2));
     }
 
     /// Two links `base` and `arm` joined by a revolute joint `j` with `origin` as its

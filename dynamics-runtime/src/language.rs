@@ -8,7 +8,7 @@
 //! | item | form |
 //! | --- | --- |
 //! | the type | `pub struct Name;` (exactly once; any visibility) |
-//! | a setting | `gravity: ..;`, `outputs: [..];`, `frames: [..];`, `parameters: [..];`, `allow: [..];`, `urdf: "..";`, `floating_base: ..;`, `urdf_damping: ..;`, `force_analysis: ..;`, `isa: ..;`, `rotation_tolerance: ..;` (each at most once) |
+//! | a setting | `gravity: ..;`, `outputs: [..];`, `frames: [..];`, `parameters: [..];`, `allow: [..];`, `urdf: "..";`, `floating_base: ..;`, `urdf_damping: ..;`, `urdf_mimic: ..;`, `force_analysis: ..;`, `isa: ..;`, `rotation_tolerance: ..;` (each at most once) |
 //! | a body | `body name { mass: .., com: [..], inertia: .. }` or `{ .., shape: .. }` |
 //! | a joint | `joint name: kind(parent -> child) { .. }` or `joint name: kind(parent -> child);` |
 //! | a load | `load name: force on body at [x, y, z] in world;` (also `couple`, `wrench`; `at` and `in world` / `in body` optional) |
@@ -243,15 +243,18 @@
 //! triangle inequality (I1 + I2 ≥ I3, which every physical body does). Any other name is
 //! an error.
 //!
-//! ## `urdf`, `floating_base` and `urdf_damping`
+//! ## `urdf`, `floating_base`, `urdf_damping` and `urdf_mimic`
 //!
 //! `urdf: "path";` adds a URDF file's links (as bodies) and joints (as joints) to the
 //! declaration. The path is relative to the directory of the `Cargo.toml` of the crate that
 //! invokes the macro. `revolute` and `continuous` joints become revolute joints (one
 //! coordinate, the angle), `prismatic` prismatic, `fixed` fixed; the root link is welded to
 //! the ground by a joint `ground_weld`, or, with `floating_base: true;`, given a free joint
-//! `root_joint`. Mimic, planar, floating and spherical joints are refused. Every rule of the
-//! language applies to the imported bodies and joints, with errors at the path.
+//! `root_joint`. Planar, floating and spherical joints are refused, and so are mimic joints
+//! (a `<mimic>` couples one coordinate to another) unless `urdf_mimic: false;`, which
+//! ignores the `<mimic>` elements: each such joint is then an independent coordinate, as
+//! Pinocchio's `buildModel` makes it by default (Talos' and Romeo's grippers, say). Every
+//! rule of the language applies to the imported bodies and joints, with errors at the path.
 //!
 //! What each joint's elements become:
 //!
@@ -267,8 +270,8 @@
 //! it. Pinocchio reads the same number into `model.damping` but its `rnea`, `nle` and `aba`
 //! leave it out, so on a damped URDF `inverse_dynamics` is Pinocchio's `rnea` + b q̇.
 //! `urdf_damping: false;` drops the file's damping (the default, `true`, keeps it), and the
-//! functions then match Pinocchio's. `floating_base` and `urdf_damping` take `true` or
-//! `false` and apply to the `urdf:` file: either without one is an error.
+//! functions then match Pinocchio's. `floating_base`, `urdf_damping` and `urdf_mimic` take
+//! `true` or `false` and apply to the `urdf:` file: any of them without one is an error.
 //!
 //! **Joint order.** The bodies, joints and coordinates are ordered depth first from the
 //! ground, each subtree contiguous, as Pinocchio orders them: a URDF link's child joints in
@@ -303,6 +306,19 @@
 //! let limits = FromUrdf::JOINT_LIMITS[0];
 //! assert_eq!((limits.lower, limits.upper, limits.velocity, limits.effort), (-6.28, 6.28, 10.0, 100.0));
 //! assert_eq!(FromUrdf::JOINT_FRICTION, [0.0]);
+//!
+//! mechanism! {
+//!     /// A gripper whose right finger mimics the left (this repository's fixture): with
+//!     /// `urdf_mimic: false;`, two independent coordinates.
+//!     pub struct Gripper;
+//!     urdf: "../tests/ui/urdf/mimic_joint.urdf";
+//!     urdf_mimic: false;
+//!     outputs: [mass_matrix];
+//! }
+//!
+//! assert_eq!(Gripper::JOINT_NAMES, ["left_slide", "right_slide"]);
+//! let m = Gripper::mass_matrix(&[0.01, 0.02]);
+//! assert_eq!((m[0][0], m[1][1], m[0][1]), (0.05, 0.05, 0.0));
 //! ```
 //!
 //! ## `force_analysis`

@@ -247,7 +247,8 @@ pub struct Constraint {
     pub direction: Option<Axis>,
 }
 
-/// `urdf: "path";` with `floating_base: bool;` and `urdf_damping: bool;`.
+/// `urdf: "path";` with `floating_base: bool;`, `urdf_damping: bool;` and
+/// `urdf_mimic: bool;`.
 #[derive(Clone, Debug)]
 pub struct UrdfSource {
     /// The path as written, relative to the crate's manifest directory.
@@ -257,6 +258,10 @@ pub struct UrdfSource {
     /// Whether the joints' `<dynamics damping>` is imported (`urdf_damping: false;` drops
     /// it, as Pinocchio's algorithms ignore it).
     pub damping: bool,
+    /// Whether the joints' `<mimic>` is honoured, which the import refuses (the default);
+    /// `urdf_mimic: false;` ignores it, each mimic joint an independent coordinate, as
+    /// Pinocchio's `buildModel` makes it by default.
+    pub mimic: bool,
 }
 
 /// `name = nominal` in `parameters: [...]`.

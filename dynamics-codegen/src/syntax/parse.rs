@@ -34,10 +34,11 @@ impl Parse for Mechanism {
             isa: None,
             rotation_tolerance: None,
         };
-        // `floating_base:` and `urdf_damping:`, each with the span of its keyword: they
-        // apply to the `urdf:` file, so they are errors without one.
+        // `floating_base:`, `urdf_damping:` and `urdf_mimic:`, each with the span of its
+        // keyword: they apply to the `urdf:` file, so they are errors without one.
         let mut floating_base: Option<(bool, Span)> = None;
         let mut urdf_damping: Option<(bool, Span)> = None;
+        let mut urdf_mimic: Option<(bool, Span)> = None;
         // Each setting once: the name and the span of its first occurrence.
         let mut given: Vec<(String, Span)> = Vec::new();
         while !input.is_empty() {
@@ -103,6 +104,7 @@ impl Parse for Mechanism {
                                 path,
                                 floating_base: false,
                                 damping: true,
+                                mimic: true,
                             });
                         }
                         "floating_base" => {
@@ -110,6 +112,9 @@ impl Parse for Mechanism {
                         }
                         "urdf_damping" => {
                             urdf_damping = Some((parse_flag(input, setting)?, keyword.span()))
+                        }
+                        "urdf_mimic" => {
+                            urdf_mimic = Some((parse_flag(input, setting)?, keyword.span()))
                         }
                         "force_analysis" => {
                             let plane: Ident = input.parse()?;
@@ -177,11 +182,15 @@ impl Parse for Mechanism {
                 if let Some((flag, _)) = urdf_damping {
                     urdf.damping = flag;
                 }
+                if let Some((flag, _)) = urdf_mimic {
+                    urdf.mimic = flag;
+                }
             }
             None => {
                 let misplaced = [
                     ("floating_base", floating_base),
                     ("urdf_damping", urdf_damping),
+                    ("urdf_mimic", urdf_mimic),
                 ];
                 if let Some((setting, span)) = misplaced
                     .into_iter()
@@ -202,7 +211,7 @@ impl Parse for Mechanism {
 }
 
 /// The mechanism settings, `name: value;`, each given at most once.
-const SETTINGS: [&str; 11] = [
+const SETTINGS: [&str; 12] = [
     "gravity",
     "outputs",
     "frames",
@@ -211,6 +220,7 @@ const SETTINGS: [&str; 11] = [
     "urdf",
     "floating_base",
     "urdf_damping",
+    "urdf_mimic",
     "force_analysis",
     "isa",
     "rotation_tolerance",

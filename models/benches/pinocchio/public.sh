@@ -33,8 +33,11 @@
 # table's code kB stays the AVX2 + FMA copy's).
 # Robots: go2 (Unitree quadruped, free base, 18 dof), xarm7 (7-dof arm), g1 (Unitree humanoid,
 # 29 joints, free base, 35 dof); by name also the 18-dof quadrupeds anymal (ANYmal C),
-# solo12, a1 and hyq, and the arm z1 (Unitree Z1: 6 joints and a revolute gripper joint,
-# 7 dof). Nothing of example-robot-data is committed.
+# solo12, a1 and hyq, the arm z1 (Unitree Z1: 6 joints and a revolute gripper joint,
+# 7 dof) and the humanoid talos (PAL's Talos, talos_reduced.urdf: 32 joints and a free
+# base, 38 dof, its grippers' mimic joints independent coordinates, as Pinocchio's
+# buildModel makes them; every declaration says `urdf_mimic: false;`, which changes
+# nothing for a file without mimic joints). Nothing of example-robot-data is committed.
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -156,7 +159,8 @@ dynamics_runtime::mechanism! {
     /// $robot (example-robot-data), joint damping and friction removed.
     pub struct Robot;
     urdf: "$(realpath "$urdf")";
-    floating_base: $floating;${TOLERANCE:+
+    floating_base: $floating;
+    urdf_mimic: false;${TOLERANCE:+
     rotation_tolerance: $TOLERANCE;}
     outputs: [$OUTPUTS];
 }

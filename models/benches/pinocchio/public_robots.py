@@ -36,6 +36,7 @@ ROBOTS = {
     "a1": ("a1_description/urdf/a1.urdf", True),
     "hyq": ("hyq_description/robots/hyq_no_sensors.urdf", True),
     "z1": ("z1_description/urdf/z1.urdf", False),
+    "talos": ("talos_data/robots/talos_reduced.urdf", True),
 }
 SAMPLES = 20
 
