@@ -598,8 +598,9 @@ fn forward_dynamics_on(
     match method {
         ForwardMethod::ArticulatedBody => {
             let external = rnea::load_wrenches(g, model, t, loads);
+            // Over slots: isomorphic limbs side by side (every body alone where none are).
             let build =
-                |i: &[BodyInertia]| aba::forward_dynamics(g, model, t, i, &v, &tau, &external);
+                |i: &[BodyInertia]| aba::forward_dynamics(g, model, t, i, (&v, &tau), &external);
             build(&base_parameters::regroup(g, model, t, i, build))
         }
         ForwardMethod::MassMatrixLdlt => {

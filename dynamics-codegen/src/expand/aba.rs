@@ -19,6 +19,7 @@
 
 use super::geometry::{self, BodyInertia, JointTransform};
 use super::ldlt;
+use super::slots::Slots;
 use super::spatial::{
     add6, congruence, dot6, force_cross, motion_cross, motion_subspace, scale6, symmetric, Six,
 };
@@ -55,6 +56,19 @@ impl Symmetric6 {
             .mul_vec(g, l)
             .add(g, self.c.mul_vec(g, w));
         (top, bottom)
+    }
+
+    /// Lane k of every entry (`None`: the matrix itself).
+    fn lane(self, g: &Graph, k: Option<usize>) -> Self {
+        let lane = |m: Mat3| match k {
+            Some(k) => Mat3(m.0.map(|row| row.map(|x| g.lane(x, k)))),
+            None => m,
+        };
+        Symmetric6 {
+            a: lane(self.a),
+            b: lane(self.b),
+            c: lane(self.c),
+        }
     }
 
     fn add(self, g: &Graph, o: Symmetric6) -> Self {
@@ -111,48 +125,82 @@ fn motion_to_body(g: &Graph, t: &JointTransform, (l, w): Six) -> Six {
     (geometry::to_body(g, t, lin), geometry::to_body(g, t, w))
 }
 
-/// q̈ = FD(q, q̇, τ) by the articulated-body algorithm.
+/// q̈ = FD(q, q̇, τ) by the articulated-body algorithm over [`Slots`]: isomorphic limbs
+/// side by side, their twists, articulated inertias and bias forces, U, D⁻¹ and
+/// accelerations in the lanes of packed values; each lane's articulated inertia and bias
+/// force added into a scalar parent's in turn, lane for lane into a packed one, and q̈ read
+/// lane by lane. Without isomorphic limbs every body is a slot of its own and every value
+/// scalar: the algorithm one body at a time.
 pub fn forward_dynamics(
     g: &Graph,
     model: &Model,
     transforms: &[JointTransform],
     inertias: &[BodyInertia],
-    velocity: &[Node],
-    tau: &[Node],
+    (velocity, tau): (&[Node], &[Node]),
     loads: &[(Vec3, Vec3)],
 ) -> Vec<Node> {
-    let n = model.bodies.len();
-    let subspaces: Vec<Vec<Six>> = model
-        .bodies
-        .iter()
-        .map(|b| motion_subspace(g, &b.joint.kind))
-        .collect();
+    let slots = Slots::of(model);
+    by_slots(
+        g,
+        model,
+        &slots,
+        (transforms, inertias),
+        (velocity, tau),
+        loads,
+    )
+}
+
+/// The articulated-body algorithm over `slots`, from every body's transform, inertia and
+/// load (zipped into the slots').
+fn by_slots(
+    g: &Graph,
+    model: &Model,
+    slots: &Slots,
+    (transforms, inertias): (&[JointTransform], &[BodyInertia]),
+    (velocity, tau): (&[Node], &[Node]),
+    loads: &[(Vec3, Vec3)],
+) -> Vec<Node> {
+    let n = slots.slots.len();
+    let transforms = slots.transforms(g, transforms);
+    let inertias = slots.inertias(g, inertias);
+    let joint = |s: usize| &model.bodies[slots.slots[s].lanes[0]].joint;
+    let subspaces: Vec<Vec<Six>> = (0..n).map(|s| motion_subspace(g, &joint(s).kind)).collect();
+    // The lanes' values of a per-coordinate input (`of`, at `row` of the joint's
+    // coordinates) or of a per-body one.
+    let coordinate = |s: usize, of: &[Node], row: usize| {
+        slots.zip_lanes(g, s, |b| of[model.bodies[b].joint.idx_v + row])
+    };
+    let per_body = |s: usize, value: &dyn Fn(usize) -> Node| slots.zip_lanes(g, s, value);
     // Pass 1: velocities, velocity-product accelerations, bias forces.
     let mut twists: Vec<Six> = Vec::with_capacity(n);
     let mut bias_accel: Vec<Six> = Vec::with_capacity(n);
     let mut inertia_a: Vec<Symmetric6> = Vec::with_capacity(n);
     let mut force_a: Vec<Six> = Vec::with_capacity(n);
-    for (i, body) in model.bodies.iter().enumerate() {
-        let k = body.joint.idx_v;
-        let joint_velocity = subspaces[i]
+    for s in 0..n {
+        let joint_velocity = subspaces[s]
             .iter()
             .enumerate()
-            .fold((Vec3::zero(g), Vec3::zero(g)), |acc, (col, s)| {
-                add6(g, acc, scale6(g, *s, velocity[k + col]))
+            .fold((Vec3::zero(g), Vec3::zero(g)), |acc, (col, axis)| {
+                add6(g, acc, scale6(g, *axis, coordinate(s, velocity, col)))
             });
-        let inherited = body
-            .parent
-            .map(|p| motion_to_body(g, &transforms[i], twists[p]));
+        let inherited = slots
+            .parent_slot(s)
+            .map(|p| motion_to_body(g, &transforms[s], twists[p]));
         let v = inherited.map_or(joint_velocity, |vp| add6(g, vp, joint_velocity));
         // c = v × v_J; on the ground v = v_J, so c = 0.
         let c = match inherited {
             Some(_) => motion_cross(g, v, joint_velocity),
             None => (Vec3::zero(g), Vec3::zero(g)),
         };
-        let inertia = Symmetric6::from_inertia(g, &inertias[i]);
+        let inertia = Symmetric6::from_inertia(g, &inertias[s]);
         let momentum = inertia.apply(g, v);
-        let mut p = force_cross(g, v, momentum);
-        p = (p.0.sub(g, loads[i].0), p.1.sub(g, loads[i].1));
+        let load = |part: fn(&(Vec3, Vec3)) -> Vec3| {
+            Vec3(std::array::from_fn(|i| {
+                per_body(s, &|b| part(&loads[b]).get(i))
+            }))
+        };
+        let p = force_cross(g, v, momentum);
+        let p = (p.0.sub(g, load(|l| l.0)), p.1.sub(g, load(|l| l.1)));
         twists.push(v);
         bias_accel.push(c);
         inertia_a.push(inertia);
@@ -162,20 +210,18 @@ pub fn forward_dynamics(
     let mut u_vectors: Vec<Vec<Six>> = vec![Vec::new(); n];
     let mut inverse_d: Vec<Vec<Vec<Node>>> = vec![Vec::new(); n];
     let mut u_scalars: Vec<Vec<Node>> = vec![Vec::new(); n];
-    for i in (0..n).rev() {
-        let body = &model.bodies[i];
-        let k = body.joint.idx_v;
-        let dofs = body.joint.kind.dofs();
-        let ia = inertia_a[i];
-        let u: Vec<Six> = subspaces[i].iter().map(|s| ia.apply(g, *s)).collect();
-        let armature = geometry::value(g, &body.joint.armature);
-        let damping = geometry::value(g, &body.joint.damping);
+    for s in (0..n).rev() {
+        let dofs = joint(s).kind.dofs();
+        let ia = inertia_a[s];
+        let u: Vec<Six> = subspaces[s].iter().map(|axis| ia.apply(g, *axis)).collect();
+        let armature = per_body(s, &|b| geometry::value(g, &model.bodies[b].joint.armature));
+        let damping = per_body(s, &|b| geometry::value(g, &model.bodies[b].joint.damping));
         // D = Sᵀ I^A S is symmetric: entry (r, c) for r ≤ c, mirrored.
         let d: Vec<Vec<Node>> = (0..dofs)
             .map(|r| {
                 (0..dofs)
                     .map(|c| {
-                        let entry = dot6(g, subspaces[i][r.min(c)], u[r.max(c)]);
+                        let entry = dot6(g, subspaces[s][r.min(c)], u[r.max(c)]);
                         if r == c {
                             g.add(entry, armature)
                         } else {
@@ -187,13 +233,14 @@ pub fn forward_dynamics(
             .collect();
         let small_u: Vec<Node> = (0..dofs)
             .map(|r| {
+                let rate = coordinate(s, velocity, r);
                 g.sub(
-                    g.sub(tau[k + r], g.mul(damping, velocity[k + r])),
-                    dot6(g, subspaces[i][r], force_a[i]),
+                    g.sub(coordinate(s, tau, r), g.mul(damping, rate)),
+                    dot6(g, subspaces[s][r], force_a[s]),
                 )
             })
             .collect();
-        if let Some(parent) = body.parent {
+        if let Some(parent) = slots.parent_slot(s) {
             // D⁻¹ applied to each column of Uᵀ (one dof: a reciprocal; more: a solve).
             let d_inv_ut: Vec<Six> = if dofs == 1 {
                 let inv = g.div(g.one(), d[0][0]);
@@ -205,46 +252,50 @@ pub fn forward_dynamics(
             for col in 0..dofs {
                 ia_small = ia_small.minus_outer(g, u[col], d_inv_ut[col]);
             }
-            let mut pa = add6(g, force_a[i], ia_small.apply(g, bias_accel[i]));
+            let mut pa = add6(g, force_a[s], ia_small.apply(g, bias_accel[s]));
             for col in 0..dofs {
                 pa = add6(g, pa, scale6(g, d_inv_ut[col], small_u[col]));
             }
-            let moved = ia_small.to_parent(g, &transforms[i]);
-            inertia_a[parent] = inertia_a[parent].add(g, moved);
-            let (fl, fa) = geometry::wrench_to_parent(g, &transforms[i], pa.0, pa.1);
-            force_a[parent] = add6(g, force_a[parent], (fl, fa));
+            let moved = ia_small.to_parent(g, &transforms[s]);
+            let (fl, fa) = geometry::wrench_to_parent(g, &transforms[s], pa.0, pa.1);
+            for k in slots.lanes_into_parent(s) {
+                let lane = |x: Vec3| k.map_or(x, |k| x.lane(g, k));
+                inertia_a[parent] = inertia_a[parent].add(g, moved.lane(g, k));
+                force_a[parent] = add6(g, force_a[parent], (lane(fl), lane(fa)));
+            }
         }
-        u_vectors[i] = u;
-        inverse_d[i] = d;
-        u_scalars[i] = small_u;
+        u_vectors[s] = u;
+        inverse_d[s] = d;
+        u_scalars[s] = small_u;
     }
     // Pass 3: accelerations, root to leaves.
     let gravity = Vec3::constant(g, model.gravity_in_world).neg(g);
     let base: Six = (gravity, Vec3::zero(g));
     let mut accel: Vec<Six> = Vec::with_capacity(n);
     let mut qdd = vec![g.zero(); model.nv];
-    for (i, body) in model.bodies.iter().enumerate() {
-        let k = body.joint.idx_v;
-        let parent_accel = body.parent.map_or(base, |p| accel[p]);
+    for s in 0..n {
+        let parent_accel = slots.parent_slot(s).map_or(base, |p| accel[p]);
         let a_prime = add6(
             g,
-            motion_to_body(g, &transforms[i], parent_accel),
-            bias_accel[i],
+            motion_to_body(g, &transforms[s], parent_accel),
+            bias_accel[s],
         );
-        let rhs: Vec<Node> = u_vectors[i]
+        let rhs: Vec<Node> = u_vectors[s]
             .iter()
-            .zip(&u_scalars[i])
+            .zip(&u_scalars[s])
             .map(|(u, &small)| g.sub(small, dot6(g, *u, a_prime)))
             .collect();
         let solution = if rhs.len() == 1 {
-            vec![g.div(rhs[0], inverse_d[i][0][0])]
+            vec![g.div(rhs[0], inverse_d[s][0][0])]
         } else {
-            ldlt::solve_dense(g, inverse_d[i].clone(), rhs)
+            ldlt::solve_dense(g, inverse_d[s].clone(), rhs)
         };
         let mut a = a_prime;
         for (col, &x) in solution.iter().enumerate() {
-            qdd[k + col] = x;
-            a = add6(g, a, scale6(g, subspaces[i][col], x));
+            for (k, &b) in slots.slots[s].lanes.iter().enumerate() {
+                qdd[model.bodies[b].joint.idx_v + col] = g.lane(x, k);
+            }
+            a = add6(g, a, scale6(g, subspaces[s][col], x));
         }
         accel.push(a);
     }
@@ -274,4 +325,42 @@ fn solve_columns(g: &Graph, d: &[Vec<Node>], u: &[Six]) -> Vec<Six> {
             )
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{by_slots, forward_dynamics};
+    use crate::expand::{
+        fresh_graph, inputs,
+        slots::Slots,
+        tests::{humanoid, state},
+    };
+    use crate::sym::{Array, Vec3};
+
+    /// The algorithm over the humanoid's slots (legs and arms in pairs of lanes) gives the
+    /// one-body-a-slot algorithm's q̈, with a third of its operations packed (the free base's 6 × 6
+    /// solve and the waist are scalar) and fewer in all.
+    #[test]
+    fn the_packed_algorithm_is_the_scalar_one() {
+        let model = humanoid();
+        let (g, t, i) = fresh_graph(&model);
+        let v = inputs(&g, Array::V, model.nv);
+        let tau = inputs(&g, Array::Tau, model.nv);
+        let none = vec![(Vec3::zero(&g), Vec3::zero(&g)); model.bodies.len()];
+        let each_body = Slots::each_body(&model);
+        let scalar = by_slots(&g, &model, &each_body, (&t, &i), (&v, &tau), &none);
+        let packed = forward_dynamics(&g, &model, &t, &i, (&v, &tau), &none);
+        let count = g.op_count(&packed);
+        assert!(3 * count.packed > count.total(), "{count}");
+        assert!(count.total() < g.op_count(&scalar).total(), "{count}");
+        let at = state(&model);
+        let (want, got) = (g.eval(&at, &scalar), g.eval(&at, &packed));
+        for (k, (w, x)) in want.iter().zip(&got).enumerate() {
+            assert!(
+                (w - x).abs() <= 1e-12 * (1.0 + w.abs()),
+                "q̈[{k}]: {x} packed, {w} not"
+            );
+        }
+        assert!(want.iter().filter(|w| w.abs() > 1e-3).count() > model.nv / 2);
+    }
 }

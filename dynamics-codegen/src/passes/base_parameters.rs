@@ -548,7 +548,7 @@ mod tests {
             crate::expand::inputs(&g, Array::Tau, model.nv),
         );
         let none = vec![(crate::sym::Vec3::zero(&g), crate::sym::Vec3::zero(&g)); i.len()];
-        let aba_declared = aba::forward_dynamics(&g, &model, &t, &i, &v, &tau, &none);
+        let aba_declared = aba::forward_dynamics(&g, &model, &t, &i, (&v, &tau), &none);
         let (g2, aba_regrouped) = forward_dynamics_by(&model, ForwardMethod::ArticulatedBody);
         let count = |g: &Graph, nodes: &[Node]| {
             let c = g.op_count(nodes);
