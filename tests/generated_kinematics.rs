@@ -22,7 +22,7 @@
 //!   `joint_jacobians` and `joint_acceleration_biases` (the three checked above).
 
 use dynamics_runtime::{mechanism, Mechanism, Reference};
-use dynamics_tests::free_tree;
+use dynamics_tests::{assert_placements_are_the_poses, free_tree};
 use serde::Deserialize;
 
 mechanism! {
@@ -348,23 +348,8 @@ fn placements_of_a_free_tree_match_the_reference() {
     let mut reference = Reference::<f64>::new(&model);
     for k in 0..6 {
         let q = free_tree::configuration(k);
-        let generated = FreeTreeKinematics::joint_placements(&q);
         let expected = reference.body_poses(&q).expect("sizes match");
-        for (b, (rotation, origin)) in generated.iter().enumerate() {
-            for r in 0..3 {
-                let e = expected[b].origin_in_world[r];
-                assert!(
-                    (origin[r] - e).abs() <= 1e-13,
-                    "body {b} p[{r}] {}, {e}",
-                    origin[r]
-                );
-                for c in 0..3 {
-                    let e = expected[b].rotation_in_world[(r, c)];
-                    let g = rotation[r][c];
-                    assert!((g - e).abs() <= 1e-13, "body {b} R[{r}][{c}] {g}, {e}");
-                }
-            }
-        }
+        assert_placements_are_the_poses(&FreeTreeKinematics::joint_placements(&q), expected);
     }
 }
 

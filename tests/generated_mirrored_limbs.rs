@@ -16,6 +16,7 @@
 mod generated_support;
 
 use dynamics_runtime::{mechanism, Mechanism, Reference};
+use dynamics_tests::assert_placements_are_the_poses;
 use dynamics_tests::dual_derivatives::{
     assert_derivatives_are_the_reference_dual_numbers, GeneratedDerivatives,
 };
@@ -94,22 +95,8 @@ fn placements_centroidal_momentum_and_m_inverse_of_mirror_image_legs_are_the_ref
     let mut rng = SplitMix(0x0d1f);
     for _ in 0..10 {
         let (q, v) = random_state(&mut rng);
-        let placements = MirroredQuadruped::joint_placements(&q);
         let poses = reference.body_poses(&q).expect("sizes");
-        for (b, (rotation, origin)) in placements.iter().enumerate() {
-            for r in 0..3 {
-                let e = poses[b].origin_in_world[r];
-                assert!(
-                    (origin[r] - e).abs() <= 1e-13,
-                    "body {b} p[{r}] {}, {e}",
-                    origin[r]
-                );
-                for c in 0..3 {
-                    let (x, e) = (rotation[r][c], poses[b].rotation_in_world[(r, c)]);
-                    assert!((x - e).abs() <= 1e-13, "body {b} R[{r}][{c}] {x}, {e}");
-                }
-            }
-        }
+        assert_placements_are_the_poses(&MirroredQuadruped::joint_placements(&q), poses);
         let a_g = MirroredQuadruped::centroidal_momentum_matrix(&q);
         let h_g = reference.centroidal_momentum(&q, &v).expect("sizes");
         for r in 0..6 {

@@ -2,7 +2,7 @@
 //! and states for the property tests, and comparisons.
 
 use dynamics_runtime::{
-    BodySpec, DoubleDouble, Inertia, JointKind, JointSpec, Model, ModelBuilder, GROUND,
+    BodySpec, DoubleDouble, Inertia, JointKind, JointSpec, Model, ModelBuilder, Pose, GROUND,
 };
 use nalgebra::{DMatrix, Matrix3, Rotation3, UnitQuaternion, Vector3};
 use proptest::prelude::*;
@@ -70,6 +70,30 @@ pub fn assert_close(what: &str, got: &[f64], expected: &[f64], tolerance: f64) {
         "{what}: error {error:e} > allowed {allowed:e} = {tolerance:e} · (1 + max |expected|)\n  \
          got      {got:?}\n  expected {expected:?}"
     );
+}
+
+/// Asserts that generated placements (each body's (rotation rows, origin) in the world,
+/// `joint_placements`) are the reference's body poses, entry for entry within 1e-13.
+#[track_caller]
+pub fn assert_placements_are_the_poses(
+    placements: &[([[f64; 3]; 3], [f64; 3])],
+    poses: &[Pose<f64>],
+) {
+    assert_eq!(placements.len(), poses.len());
+    for (b, ((rotation, origin), pose)) in placements.iter().zip(poses).enumerate() {
+        for r in 0..3 {
+            let e = pose.origin_in_world[r];
+            assert!(
+                (origin[r] - e).abs() <= 1e-13,
+                "body {b} p[{r}] {}, {e}",
+                origin[r]
+            );
+            for c in 0..3 {
+                let (x, e) = (rotation[r][c], pose.rotation_in_world[(r, c)]);
+                assert!((x - e).abs() <= 1e-13, "body {b} R[{r}][{c}] {x}, {e}");
+            }
+        }
+    }
 }
 
 /// The 2-norm condition number `λ_max / λ_min` of a symmetric positive-definite matrix
