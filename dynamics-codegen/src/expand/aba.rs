@@ -60,10 +60,7 @@ impl Symmetric6 {
 
     /// Lane k of every entry (`None`: the matrix itself).
     fn lane(self, g: &Graph, k: Option<usize>) -> Self {
-        let lane = |m: Mat3| match k {
-            Some(k) => Mat3(m.0.map(|row| row.map(|x| g.lane(x, k)))),
-            None => m,
-        };
+        let lane = |m: Mat3| k.map_or(m, |k| m.lane(g, k));
         Symmetric6 {
             a: lane(self.a),
             b: lane(self.b),

@@ -89,6 +89,11 @@ impl Vec3 {
 }
 
 impl Mat3 {
+    /// Lane k of each entry (`Graph::lane`: a scalar entry is its own every lane).
+    pub fn lane(self, g: &Graph, k: usize) -> Mat3 {
+        Mat3(self.0.map(|row| row.map(|x| g.lane(x, k))))
+    }
+
     /// The matrix with these rows.
     #[must_use]
     pub fn from_rows(rows: [Vec3; 3]) -> Self {
