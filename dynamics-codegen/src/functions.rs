@@ -416,7 +416,11 @@ impl Entry {
         let Expanded { graph, output, doc } = (self.expand)(model);
         let mut spec = FunctionSpec::new(self.name, scalar_trait.clone(), self.args(model), output);
         spec.doc = doc;
-        Function { graph, spec }
+        Function {
+            graph,
+            spec,
+            unpacked: None,
+        }
     }
 }
 

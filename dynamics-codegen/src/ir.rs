@@ -27,6 +27,10 @@ pub(crate) struct Function {
     pub graph: Graph,
     /// Name, arguments, outputs, docs.
     pub spec: FunctionSpec,
+    /// For a graph with packed values and a mechanism declared with `lanes: true;`, the same
+    /// function expanded with none (`Model::packs` off): the body that scalar types holding
+    /// several states side by side run (`dynamics_runtime::Scalar::run_packed`).
+    pub unpacked: Option<Box<Function>>,
 }
 
 impl Function {

@@ -170,8 +170,14 @@ pub fn compile(mut mechanism: Mechanism, manifest_dir: &Path) -> syn::Result<Com
     let dispatch = mechanism.isa != Some(syntax::Isa::Baseline);
     let mut functions = Vec::new();
     let mut too_large: Option<syn::Error> = None;
+    let unpacking = model::Model {
+        packs: false,
+        ..model.clone()
+    };
     for entry in functions::CATALOG.iter().filter(|e| (e.wanted)(&model)) {
-        let ir::Function { graph, mut spec } = entry.function(&model, &scalar);
+        let ir::Function {
+            graph, mut spec, ..
+        } = entry.function(&model, &scalar);
         if graph.is_exhausted() {
             let error = too_large_error(&mechanism, entry.name);
             match &mut too_large {
@@ -183,12 +189,50 @@ pub fn compile(mut mechanism: Mechanism, manifest_dir: &Path) -> syn::Result<Com
         let (graph, output) = passes::latency::regroup(&graph, &spec.output);
         spec.output = passes::signs::settle(&graph, &output);
         spec.dispatch = dispatch;
-        functions.push(ir::Function { graph, spec });
+        let unpacked = if mechanism.lanes {
+            unpacked_twin(entry, &graph, &unpacking, &scalar, dispatch)
+        } else {
+            None
+        };
+        functions.push(ir::Function {
+            graph,
+            spec,
+            unpacked,
+        });
     }
     if let Some(error) = too_large {
         return Err(error);
     }
     Ok(Compiled { model, functions })
+}
+
+/// `entry`'s function expanded for `unpacking` (the model with [`model::Model::packs`]
+/// off), if its `graph` as expanded for the model has packed values: the body lane types
+/// run ([`ir::Function::unpacked`]), the cheapest expansion with no packed value.
+fn unpacked_twin(
+    entry: &functions::Entry,
+    graph: &sym::Graph,
+    unpacking: &model::Model,
+    scalar: &syn::Path,
+    dispatch: bool,
+) -> Option<Box<ir::Function>> {
+    if !graph.packed_flags().contains(&true) {
+        return None;
+    }
+    let ir::Function {
+        graph, mut spec, ..
+    } = entry.function(unpacking, scalar);
+    if graph.is_exhausted() {
+        return None;
+    }
+    let (graph, output) = passes::latency::regroup(&graph, &spec.output);
+    spec.output = passes::signs::settle(&graph, &output);
+    spec.dispatch = dispatch;
+    Some(Box::new(ir::Function {
+        graph,
+        spec,
+        unpacked: None,
+    }))
 }
 
 /// The error for a function whose expansion passed [`sym::NODE_BUDGET`] nodes: at the
@@ -234,26 +278,19 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
     let runtime = runtime_path();
     let nalgebra = quote!(#runtime::nalgebra);
     let functions = compiled.functions.iter().map(|f| {
-        let fused = passes::fusion::fuse(&f.graph, &f.spec.output);
-        let name = f.spec.name.to_string();
-        // The `_into` and `_sparse_into` twins: the same printer over the nodes each writes.
-        let twin = |writes: print::Writes| {
-            let written = print::written_nodes(&f.graph, &f.spec.output, writes);
-            let plan = schedule::Plan::writing(&f.graph, &f.spec, fused.clone(), &written);
-            print::function_into(&f.graph, &f.spec, &plan, writes)
+        let printed = printed(f, &compiled.model.outputs);
+        let Some(unpacked) = &f.unpacked else {
+            return quote!(#(#printed)*);
         };
-        let outputs = &compiled.model.outputs;
-        let into = outputs
-            .wants_into(&name)
-            .then(|| twin(print::Writes::Every));
-        let sparse_into = outputs.wants_sparse_into(&name).then(|| {
-            twin(print::Writes::Sparse {
-                upper_triangle: functions::is_symmetric(&name),
-            })
-        });
-        let plan = schedule::Plan::new(&f.graph, &f.spec, fused);
-        let function = print::function(&f.graph, &f.spec, &plan);
-        quote!(#function #into #sparse_into)
+        let count = unpacked.op_count();
+        let both = printed
+            .into_iter()
+            .zip(self::printed(unpacked, &compiled.model.outputs))
+            .map(|(packed, unpacked)| {
+                print::packed_or_unpacked(packed, unpacked, &count)
+                    .unwrap_or_else(|e| e.to_compile_error())
+            });
+        quote!(#(#both)*)
     });
     let wrappers = compiled
         .functions
@@ -286,6 +323,29 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
             }
         }
     }
+}
+
+/// The function `f` and the `_into` and `_sparse_into` twins `outputs` asks of it.
+fn printed(f: &ir::Function, outputs: &model::Outputs) -> Vec<TokenStream> {
+    let fused = passes::fusion::fuse(&f.graph, &f.spec.output);
+    let name = f.spec.name.to_string();
+    // The twins: the same printer over the nodes each writes.
+    let twin = |writes: print::Writes| {
+        let written = print::written_nodes(&f.graph, &f.spec.output, writes);
+        let plan = schedule::Plan::writing(&f.graph, &f.spec, fused.clone(), &written);
+        print::function_into(&f.graph, &f.spec, &plan, writes)
+    };
+    let plan = schedule::Plan::new(&f.graph, &f.spec, fused.clone());
+    let mut printed = vec![print::function(&f.graph, &f.spec, &plan)];
+    if outputs.wants_into(&name) {
+        printed.push(twin(print::Writes::Every));
+    }
+    if outputs.wants_sparse_into(&name) {
+        printed.push(twin(print::Writes::Sparse {
+            upper_triangle: functions::is_symmetric(&name),
+        }));
+    }
+    printed
 }
 
 /// Replaces each `__if_std! { .. }` of the generated code (an item, or an item of an
@@ -395,6 +455,62 @@ mod tests {
                 "the ABA, within the budget"
             );
         });
+    }
+
+    /// With `lanes: true;`, a function expanded with packed values (the humanoid's legs and
+    /// arms side by side) has an unpacked twin with none, of the same values, which the printed function runs
+    /// for lane types (`T::run_packed`, its `_into` twin `T::run_packed_into`); a function
+    /// with no packed value has none.
+    #[test]
+    fn packed_functions_have_an_unpacked_twin_of_the_same_values() {
+        let declaration = |lanes: TokenStream| {
+            expand::tests::humanoid_declaration(quote!(
+                outputs: [inverse_dynamics, mass_matrix_into, coriolis_matrix, forward_dynamics];
+                #lanes
+            ))
+        };
+        let without = compile(
+            syn::parse2(declaration(quote!())).expect("parses"),
+            Path::new("."),
+        );
+        let without = without.expect("valid");
+        assert!(
+            without.functions.iter().all(|f| f.unpacked.is_none()),
+            "only when asked"
+        );
+        let tokens = declaration(quote!(lanes: true;));
+        let compiled =
+            compile(syn::parse2(tokens).expect("parses"), Path::new(".")).expect("valid");
+        let state = expand::tests::state(&compiled.model);
+        let mut twins = Vec::new();
+        for f in &compiled.functions {
+            let packed = f.graph.packed_flags().contains(&true);
+            let name = f.spec.name.to_string();
+            assert_eq!(f.unpacked.is_some(), packed, "{name}");
+            let Some(unpacked) = &f.unpacked else {
+                continue;
+            };
+            assert!(!unpacked.graph.packed_flags().contains(&true), "{name}");
+            let want = f.graph.eval(&state, &f.spec.output.nodes());
+            let got = unpacked.graph.eval(&state, &unpacked.spec.output.nodes());
+            for (w, x) in want.iter().zip(&got) {
+                assert!(
+                    (w - x).abs() <= 1e-12 * (1.0 + w.abs()),
+                    "{name}: {x} against {w}"
+                );
+            }
+            twins.push(name);
+        }
+        assert_eq!(
+            twins,
+            ["mass_matrix", "coriolis_matrix", "forward_dynamics"]
+        );
+        let text: String = to_tokens(&compiled)
+            .to_string()
+            .split_whitespace()
+            .collect();
+        assert_eq!(text.matches("T::run_packed(").count(), 3, "{text}");
+        assert_eq!(text.matches("T::run_packed_into(").count(), 1);
     }
 
     /// A sparse twin of an output that is zero at every state writes nothing and names its

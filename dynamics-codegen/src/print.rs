@@ -85,6 +85,19 @@
 //! a spec with [`FunctionSpec::dispatch`] off (a mechanism declared with `isa: baseline;`),
 //! its pieces then `#[inline(never)]` functions called in turn.
 //!
+//! # A packed body and an unpacked one
+//!
+//! With `lanes: true;`, a function expanded with packed values (isomorphic limbs, or partly
+//! filled columns, side by side: `crate::expand::slots`) is printed twice, from its graph and from its
+//! unpacked twin's (the same function expanded with `Model::packs` off, the cheapest
+//! expansion with no packed value: `crate::ir::Function::unpacked`), as nested functions
+//! `packed` and `unpacked` of one emitted function ([`packed_or_unpacked`]), which runs
+//! `T::run_packed(|| packed(q, ..), || unpacked(q, ..))`. `f32` and `f64` (and every type by
+//! default) run the packed body, where four limbs fill one AVX register; the lane types
+//! `F64x4` and `F32x8`, whose every operation already fills one with four or eight states,
+//! run the unpacked body, where a packed value would take four registers. The body a type
+//! does not run is never instantiated for it. The docs give both op counts.
+//!
 //! # Writing into the caller's storage
 //!
 //! An output asked for as `<name>_into` also gets [`function_into`]: the same arguments and
@@ -498,6 +511,80 @@ pub(crate) fn function_into(
             #body
         }
     }
+}
+
+/// One function (or `_into` twin) with two bodies, `packed` and `unpacked` (the printed
+/// function of a graph with packed values and of its unpacked copy, the same name and
+/// arguments): the packed function's docs and signature, the two as nested functions
+/// `packed` and `unpacked`, and `T::run_packed` (`T::run_packed_into` for a twin, which
+/// takes `out`) choosing one for the scalar type, at compile time: `f32` and `f64` run the
+/// packed body, lane types the unpacked one, whose op count is added to the docs.
+///
+/// # Errors
+/// If either is not a function (never for [`function`]'s and [`function_into`]'s output).
+pub(crate) fn packed_or_unpacked(
+    packed: TokenStream,
+    unpacked: TokenStream,
+    unpacked_count: &OpCount,
+) -> syn::Result<TokenStream> {
+    let mut outer: syn::ItemFn = syn::parse2(packed)?;
+    let inner = |mut f: syn::ItemFn, name: &str| {
+        f.attrs.retain(|a| !a.path().is_ident("doc"));
+        f.attrs.insert(0, syn::parse_quote!(#[inline(always)]));
+        f.sig.ident = format_ident!("{}", name);
+        f.vis = syn::Visibility::Inherited;
+        f
+    };
+    let packed = inner(outer.clone(), "packed");
+    let unpacked = inner(syn::parse2(unpacked)?, "unpacked");
+    // Every argument is passed on (to one body or the other), so none is unused.
+    let mut args = Vec::new();
+    let mut out = None;
+    for input in &mut outer.sig.inputs {
+        if let syn::FnArg::Typed(arg) = input {
+            if let syn::Pat::Ident(pat) = &mut *arg.pat {
+                let name = pat.ident.to_string();
+                let name = name.strip_prefix('_').unwrap_or(&name);
+                if name == "out" {
+                    out = Some(format_ident!("out"));
+                } else {
+                    args.push(format_ident!("{}", name));
+                }
+                pat.ident = format_ident!("{}", name);
+            }
+        }
+    }
+    let body = match out {
+        Some(out) => quote! {
+            T::run_packed_into(
+                #out,
+                #[inline(always)]
+                |out| packed(#(#args,)* out),
+                #[inline(always)]
+                |out| unpacked(#(#args,)* out),
+            );
+        },
+        None => quote! {
+            T::run_packed(
+                #[inline(always)]
+                || packed(#(#args),*),
+                #[inline(always)]
+                || unpacked(#(#args),*),
+            )
+        },
+    };
+    let line = format!(
+        " Lane types (`F64x4`, `F32x8`: several states side by side) run it with no packed \
+         value, one limb or column at a time: op count {unpacked_count}."
+    );
+    let at = outer
+        .attrs
+        .iter()
+        .rposition(|a| a.path().is_ident("doc"))
+        .map_or(0, |k| k + 1);
+    outer.attrs.insert(at, syn::parse_quote!(#[doc = #line]));
+    outer.block = syn::parse2(quote!({ #packed #unpacked #body }))?;
+    Ok(quote!(#outer))
 }
 
 /// [`Writes::Every`] for an output finished by a solve loop (which solves in the whole of

@@ -135,6 +135,33 @@ pub trait Scalar:
         crate::isa::out_of_line(|| narrow(crate::isa::Isa::BASELINE, out))
     }
     #[doc(hidden)]
+    /// For generated code, not for users: runs a generated function (of a mechanism declared
+    /// with `lanes: true;`) whose expansion computes isomorphic limbs (or a matrix's
+    /// columns) side by side in [`crate::pack::P4`]s, either
+    /// that `packed` body or its `unpacked` twin, the same operations one lane at a time.
+    /// The default runs `packed`, which fills the SIMD unit with one state's limbs; types
+    /// that are already several states side by side ([`crate::F64x4`], [`crate::F32x8`])
+    /// run `unpacked`, whose every operation fills their lanes, where four limbs of four
+    /// states would be four registers to an operation. The body not run is never
+    /// instantiated.
+    #[inline(always)]
+    fn run_packed<R>(packed: impl FnOnce() -> R, unpacked: impl FnOnce() -> R) -> R {
+        let _ = unpacked;
+        packed()
+    }
+    #[doc(hidden)]
+    /// [`Scalar::run_packed`] for a generated `_into` function: `out` handed to the body
+    /// that runs.
+    #[inline(always)]
+    fn run_packed_into<O: ?Sized>(
+        out: &mut O,
+        packed: impl FnOnce(&mut O),
+        unpacked: impl FnOnce(&mut O),
+    ) {
+        let _ = unpacked;
+        packed(out);
+    }
+    #[doc(hidden)]
     /// Runs one piece of a split generated function like [`Scalar::run_kernel`], each copy
     /// out of line ([`crate::isa::run_piece`]), so that the pieces stay separate functions.
     #[inline(always)]

@@ -103,6 +103,8 @@ mechanism! {
     // The default outputs, the mass matrix with its `_into` twin (the lanes benchmark's).
     outputs: [inverse_dynamics, gravity, bias, mass_matrix_into, coriolis_matrix, forward_dynamics,
               energy, joint_reactions];
+    // The lanes benchmark's and tests' robot: its lanes run the unpacked bodies.
+    lanes: true;
 
     body shoulder_link {
         mass: 3.7,

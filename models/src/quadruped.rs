@@ -16,6 +16,8 @@ mechanism! {
     // The default outputs, the mass matrix with its `_into` twin (the lanes benchmark's).
     outputs: [inverse_dynamics, gravity, bias, mass_matrix_into, coriolis_matrix, forward_dynamics,
               energy, joint_reactions];
+    // The lanes benchmark's and tests' robot: its lanes run the unpacked bodies.
+    lanes: true;
 
     /// The torso, its frame at the mass centre along its principal axes.
     body torso { mass: 3.575, inertia: diag([0.017528444, 0.129944698, 0.143418825]) }

@@ -119,7 +119,7 @@ fn by_slots(
                 columns,
             });
         }
-        if repack && slot.lanes.len() == 1 && slot.parent != SlotParent::Ground {
+        if repack && model.packs && slot.lanes.len() == 1 && slot.parent != SlotParent::Ground {
             carried = pack_columns(g, carried);
         }
         for c in &carried {

@@ -179,7 +179,7 @@ pub fn configuration_jacobian_packed(
     );
     let two = g.constant(2.0);
     let mut jacobian = vec![vec![g.zero(); model.nv]; model.nv];
-    carry_columns_up(g, &slots, &transforms, true, |s, carried| {
+    carry_columns_up(g, &slots, &transforms, model.packs, |s, carried| {
         let slot = &slots.slots[s];
         let row_of = |k: usize, row_in_joint: usize| {
             model.bodies[*padded(&slot.lanes, k)].joint.idx_v + row_in_joint

@@ -60,8 +60,12 @@ impl Slots {
     }
 
     /// Isomorphic sibling subtrees packed up to four at a time (the first siblings of each
-    /// shape in body order), every other body alone.
+    /// shape in body order), every other body alone; every body alone for a model that does
+    /// not pack ([`Model::packs`]).
     pub fn of(model: &Model) -> Slots {
+        if !model.packs {
+            return Slots::each_body(model);
+        }
         let n = model.bodies.len();
         let mut children = vec![Vec::new(); n];
         for (b, body) in model.bodies.iter().enumerate() {

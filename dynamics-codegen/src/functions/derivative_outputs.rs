@@ -66,7 +66,9 @@ fn velocity_columns(model: &Model) -> Vec<VelocityColumns> {
     let mut ways = vec![VelocityColumns::ForwardMode, VelocityColumns::Coriolis];
     if rnea_derivatives::applies(model) {
         ways.push(VelocityColumns::Analytic { packed: false });
-        ways.push(VelocityColumns::Analytic { packed: true });
+        if model.packs {
+            ways.push(VelocityColumns::Analytic { packed: true });
+        }
     }
     ways
 }

@@ -662,6 +662,11 @@ pub struct Model {
     pub declared_frames: Vec<DeclaredFrame>,
     /// Whether the triangle inequality was waived with `allow: [triangle_inequality]`.
     pub skip_triangle_inequality: bool,
+    /// Whether the expansions may compute isomorphic limbs, and partly filled columns of a
+    /// tree matrix, side by side in packed values ([`crate::expand::slots`]): true as
+    /// lowered; off for the unpacked twin of a packed function, the body that scalar types
+    /// holding several states side by side run.
+    pub packs: bool,
     /// Files the declaration was read from (URDF), for rebuild tracking.
     pub source_files: Vec<String>,
     /// The connections, unknowns and balance equations of the force analysis, and the

@@ -338,6 +338,7 @@ pub(crate) fn build(
             })
             .collect(),
         skip_triangle_inequality: resolved.skip_triangle_inequality,
+        packs: true,
         source_files: Vec::new(),
         statics,
     })

@@ -176,6 +176,9 @@ pub struct Mechanism {
     pub analysis: Option<(AnalysisPlane, Span)>,
     /// `isa: dispatch;` or `baseline;` (dispatch when absent).
     pub isa: Option<Isa>,
+    /// `lanes: true;`: each function expanded with packed values also gets the body the
+    /// SIMD lane types run, with none (false when absent).
+    pub lanes: bool,
     /// `rotation_tolerance: 1e-10;`: rotation entries within it of 0 or ±1 are taken as
     /// exactly that (1e-15 when absent).
     pub rotation_tolerance: Option<Number>,

@@ -32,6 +32,7 @@ impl Parse for Mechanism {
             frame_selection: None,
             analysis: None,
             isa: None,
+            lanes: false,
             rotation_tolerance: None,
         };
         // `floating_base:`, `urdf_damping:` and `urdf_mimic:`, each with the span of its
@@ -133,6 +134,7 @@ impl Parse for Mechanism {
                         "rotation_tolerance" => {
                             mechanism.rotation_tolerance = Some(parse_number(input)?)
                         }
+                        "lanes" => mechanism.lanes = parse_flag(input, setting)?,
                         "isa" => {
                             let isa: Ident = input.parse()?;
                             mechanism.isa = Some(match isa.to_string().as_str() {
@@ -211,7 +213,7 @@ impl Parse for Mechanism {
 }
 
 /// The mechanism settings, `name: value;`, each given at most once.
-const SETTINGS: [&str; 12] = [
+const SETTINGS: [&str; 13] = [
     "gravity",
     "outputs",
     "frames",
@@ -223,6 +225,7 @@ const SETTINGS: [&str; 12] = [
     "urdf_mimic",
     "force_analysis",
     "isa",
+    "lanes",
     "rotation_tolerance",
 ];
 
@@ -1404,6 +1407,27 @@ mod tests {
         );
         let e = with(quote!(avx512)).expect_err("unknown");
         assert!(e.to_string().contains("unknown isa `avx512`"), "{e}");
+    }
+
+    #[test]
+    fn lanes_setting_is_a_flag_off_by_default() {
+        let with = |setting: proc_macro2::TokenStream| {
+            parse(quote! {
+                struct P;
+                #setting
+                body b { mass: 1.0, shape: point }
+                joint j: prismatic(ground -> b) { axis: x }
+            })
+        };
+        assert!(!with(quote!()).expect("parses").lanes);
+        assert!(with(quote!(lanes: true;)).expect("parses").lanes);
+        assert!(!with(quote!(lanes: false;)).expect("parses").lanes);
+        let e = with(quote!(lanes: yes;)).expect_err("not a flag");
+        assert!(
+            e.to_string()
+                .contains("expected `true` or `false` after `lanes:`"),
+            "{e}"
+        );
     }
 
     #[test]

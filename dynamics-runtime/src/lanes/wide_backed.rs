@@ -190,6 +190,21 @@ macro_rules! lanes_type {
         }
 
         impl Scalar for $name {
+            /// The unpacked body: the lanes already hold several states.
+            #[inline(always)]
+            fn run_packed<R>(packed: impl FnOnce() -> R, unpacked: impl FnOnce() -> R) -> R {
+                let _ = packed;
+                unpacked()
+            }
+            #[inline(always)]
+            fn run_packed_into<O: ?Sized>(
+                out: &mut O,
+                packed: impl FnOnce(&mut O),
+                unpacked: impl FnOnce(&mut O),
+            ) {
+                let _ = packed;
+                unpacked(out);
+            }
             /// Every lane `x` as the scalar type's `from_f64` gives it.
             #[inline(always)]
             fn from_f64(x: f64) -> Self {
