@@ -175,9 +175,7 @@ pub fn compile(mut mechanism: Mechanism, manifest_dir: &Path) -> syn::Result<Com
         ..model.clone()
     };
     for entry in functions::CATALOG.iter().filter(|e| (e.wanted)(&model)) {
-        let ir::Function {
-            graph, mut spec, ..
-        } = entry.function(&model, &scalar);
+        let ir::Function { graph, spec, .. } = entry.function(&model, &scalar);
         if graph.is_exhausted() {
             let error = too_large_error(&mechanism, entry.name);
             match &mut too_large {
@@ -186,19 +184,12 @@ pub fn compile(mut mechanism: Mechanism, manifest_dir: &Path) -> syn::Result<Com
             }
             continue;
         }
-        let (graph, output) = passes::latency::regroup(&graph, &spec.output);
-        spec.output = passes::signs::settle(&graph, &output);
-        spec.dispatch = dispatch;
-        let unpacked = if mechanism.lanes {
-            unpacked_twin(entry, &graph, &unpacking, &scalar, dispatch)
-        } else {
-            None
-        };
-        functions.push(ir::Function {
-            graph,
-            spec,
-            unpacked,
-        });
+        let mut function = finished(graph, spec, dispatch);
+        if mechanism.lanes {
+            function.unpacked =
+                unpacked_twin(entry, &function.graph, &unpacking, &scalar, dispatch);
+        }
+        functions.push(function);
     }
     if let Some(error) = too_large {
         return Err(error);
@@ -219,20 +210,24 @@ fn unpacked_twin(
     if !graph.packed_flags().contains(&true) {
         return None;
     }
-    let ir::Function {
-        graph, mut spec, ..
-    } = entry.function(unpacking, scalar);
+    let ir::Function { graph, spec, .. } = entry.function(unpacking, scalar);
     if graph.is_exhausted() {
         return None;
     }
+    Some(Box::new(finished(graph, spec, dispatch)))
+}
+
+/// An expanded function made ready to print: its additions regrouped for latency
+/// ([`passes::latency::regroup`]), the signs of its outputs settled, its copies chosen.
+fn finished(graph: sym::Graph, mut spec: ir::FunctionSpec, dispatch: bool) -> ir::Function {
     let (graph, output) = passes::latency::regroup(&graph, &spec.output);
     spec.output = passes::signs::settle(&graph, &output);
     spec.dispatch = dispatch;
-    Some(Box::new(ir::Function {
+    ir::Function {
         graph,
         spec,
         unpacked: None,
-    }))
+    }
 }
 
 /// The error for a function whose expansion passed [`sym::NODE_BUDGET`] nodes: at the
@@ -278,14 +273,14 @@ pub fn to_tokens(compiled: &Compiled) -> TokenStream {
     let runtime = runtime_path();
     let nalgebra = quote!(#runtime::nalgebra);
     let functions = compiled.functions.iter().map(|f| {
-        let printed = printed(f, &compiled.model.outputs);
+        let packed = printed(f, &compiled.model.outputs);
         let Some(unpacked) = &f.unpacked else {
-            return quote!(#(#printed)*);
+            return quote!(#(#packed)*);
         };
         let count = unpacked.op_count();
-        let both = printed
+        let both = packed
             .into_iter()
-            .zip(self::printed(unpacked, &compiled.model.outputs))
+            .zip(printed(unpacked, &compiled.model.outputs))
             .map(|(packed, unpacked)| {
                 print::packed_or_unpacked(packed, unpacked, &count)
                     .unwrap_or_else(|e| e.to_compile_error())
@@ -335,17 +330,20 @@ fn printed(f: &ir::Function, outputs: &model::Outputs) -> Vec<TokenStream> {
         let plan = schedule::Plan::writing(&f.graph, &f.spec, fused.clone(), &written);
         print::function_into(&f.graph, &f.spec, &plan, writes)
     };
-    let plan = schedule::Plan::new(&f.graph, &f.spec, fused.clone());
-    let mut printed = vec![print::function(&f.graph, &f.spec, &plan)];
-    if outputs.wants_into(&name) {
-        printed.push(twin(print::Writes::Every));
-    }
-    if outputs.wants_sparse_into(&name) {
-        printed.push(twin(print::Writes::Sparse {
+    let into = outputs
+        .wants_into(&name)
+        .then(|| twin(print::Writes::Every));
+    let sparse_into = outputs.wants_sparse_into(&name).then(|| {
+        twin(print::Writes::Sparse {
             upper_triangle: functions::is_symmetric(&name),
-        }));
-    }
-    printed
+        })
+    });
+    let plan = schedule::Plan::new(&f.graph, &f.spec, fused);
+    let function = print::function(&f.graph, &f.spec, &plan);
+    [Some(function), into, sparse_into]
+        .into_iter()
+        .flatten()
+        .collect()
 }
 
 /// Replaces each `__if_std! { .. }` of the generated code (an item, or an item of an
@@ -459,7 +457,7 @@ mod tests {
 
     /// With `lanes: true;`, a function expanded with packed values (the humanoid's legs and
     /// arms side by side) has an unpacked twin with none, of the same values, which the printed function runs
-    /// for lane types (`T::run_packed`, its `_into` twin `T::run_packed_into`); a function
+    /// for lane types (`T::run_packed`, handed `out` in its `_into` twin); a function
     /// with no packed value has none.
     #[test]
     fn packed_functions_have_an_unpacked_twin_of_the_same_values() {
@@ -509,8 +507,8 @@ mod tests {
             .to_string()
             .split_whitespace()
             .collect();
-        assert_eq!(text.matches("T::run_packed(").count(), 3, "{text}");
-        assert_eq!(text.matches("T::run_packed_into(").count(), 1);
+        assert_eq!(text.matches("T::run_packed(").count(), 4, "{text}");
+        assert_eq!(text.matches("T::run_packed(out,").count(), 1);
     }
 
     /// A sparse twin of an output that is zero at every state writes nothing and names its

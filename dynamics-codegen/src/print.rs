@@ -92,7 +92,8 @@
 //! unpacked twin's (the same function expanded with `Model::packs` off, the cheapest
 //! expansion with no packed value: `crate::ir::Function::unpacked`), as nested functions
 //! `packed` and `unpacked` of one emitted function ([`packed_or_unpacked`]), which runs
-//! `T::run_packed(|| packed(q, ..), || unpacked(q, ..))`. `f32` and `f64` (and every type by
+//! `T::run_packed((), |()| packed(q, ..), |()| unpacked(q, ..))` (an `_into` twin hands `out`
+//! to the body instead of `()`). `f32` and `f64` (and every type by
 //! default) run the packed body, where four limbs fill one AVX register; the lane types
 //! `F64x4` and `F32x8`, whose every operation already fills one with four or eight states,
 //! run the unpacked body, where a packed value would take four registers. The body a type
@@ -516,8 +517,7 @@ pub(crate) fn function_into(
 /// One function (or `_into` twin) with two bodies, `packed` and `unpacked` (the printed
 /// function of a graph with packed values and of its unpacked copy, the same name and
 /// arguments): the packed function's docs and signature, the two as nested functions
-/// `packed` and `unpacked`, and `T::run_packed` (`T::run_packed_into` for a twin, which
-/// takes `out`) choosing one for the scalar type, at compile time: `f32` and `f64` run the
+/// `packed` and `unpacked`, and `T::run_packed` (handed `out` for an `_into` twin) choosing one for the scalar type, at compile time: `f32` and `f64` run the
 /// packed body, lane types the unpacked one, whose op count is added to the docs.
 ///
 /// # Errors
@@ -539,39 +539,29 @@ pub(crate) fn packed_or_unpacked(
     let unpacked = inner(syn::parse2(unpacked)?, "unpacked");
     // Every argument is passed on (to one body or the other), so none is unused.
     let mut args = Vec::new();
-    let mut out = None;
     for input in &mut outer.sig.inputs {
         if let syn::FnArg::Typed(arg) = input {
             if let syn::Pat::Ident(pat) = &mut *arg.pat {
                 let name = pat.ident.to_string();
-                let name = name.strip_prefix('_').unwrap_or(&name);
-                if name == "out" {
-                    out = Some(format_ident!("out"));
-                } else {
-                    args.push(format_ident!("{}", name));
-                }
-                pat.ident = format_ident!("{}", name);
+                pat.ident = format_ident!("{}", name.strip_prefix('_').unwrap_or(&name));
+                args.push(pat.ident.clone());
             }
         }
     }
-    let body = match out {
-        Some(out) => quote! {
-            T::run_packed_into(
-                #out,
-                #[inline(always)]
-                |out| packed(#(#args,)* out),
-                #[inline(always)]
-                |out| unpacked(#(#args,)* out),
-            );
-        },
-        None => quote! {
-            T::run_packed(
-                #[inline(always)]
-                || packed(#(#args),*),
-                #[inline(always)]
-                || unpacked(#(#args),*),
-            )
-        },
+    // An `_into` function's `out` is handed to the body that runs; `()` to one that returns.
+    let handed = if args.iter().any(|a| a == "out") {
+        quote!(out)
+    } else {
+        quote!(())
+    };
+    let body = quote! {
+        T::run_packed(
+            #handed,
+            #[inline(always)]
+            |#handed| packed(#(#args),*),
+            #[inline(always)]
+            |#handed| unpacked(#(#args),*),
+        )
     };
     let line = format!(
         " Lane types (`F64x4`, `F32x8`: several states side by side) run it with no packed \

@@ -143,23 +143,12 @@ pub trait Scalar:
     /// that are already several states side by side ([`crate::F64x4`], [`crate::F32x8`])
     /// run `unpacked`, whose every operation fills their lanes, where four limbs of four
     /// states would be four registers to an operation. The body not run is never
-    /// instantiated.
+    /// instantiated. `arg` is handed to the body that runs: `out` for an `_into` function,
+    /// `()` for one that returns its result.
     #[inline(always)]
-    fn run_packed<R>(packed: impl FnOnce() -> R, unpacked: impl FnOnce() -> R) -> R {
+    fn run_packed<A, R>(arg: A, packed: impl FnOnce(A) -> R, unpacked: impl FnOnce(A) -> R) -> R {
         let _ = unpacked;
-        packed()
-    }
-    #[doc(hidden)]
-    /// [`Scalar::run_packed`] for a generated `_into` function: `out` handed to the body
-    /// that runs.
-    #[inline(always)]
-    fn run_packed_into<O: ?Sized>(
-        out: &mut O,
-        packed: impl FnOnce(&mut O),
-        unpacked: impl FnOnce(&mut O),
-    ) {
-        let _ = unpacked;
-        packed(out);
+        packed(arg)
     }
     #[doc(hidden)]
     /// Runs one piece of a split generated function like [`Scalar::run_kernel`], each copy

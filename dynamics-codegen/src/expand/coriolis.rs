@@ -222,7 +222,15 @@ pub fn coriolis_matrix_packed(
     velocity: &[Node],
 ) -> Vec<Vec<Node>> {
     let slots = Slots::of(model);
-    by_slots(g, model, &slots, (transforms, inertias), velocity, true)
+    // Columns packed again where they meet, if the model packs at all ([`Model::packs`]).
+    by_slots(
+        g,
+        model,
+        &slots,
+        (transforms, inertias),
+        velocity,
+        model.packs,
+    )
 }
 
 /// C over `slots` from every body's transform and inertia (zipped into the slots'),
@@ -241,50 +249,44 @@ fn by_slots(
     let inertias = slots.inertias(g, inertias);
     let terms = slot_composite_terms(g, model, slots, &transforms, &inertias, velocity);
     let mut c = vec![vec![g.zero(); model.nv]; model.nv];
-    carry_columns_up(
-        g,
-        slots,
-        &transforms,
-        repack && model.packs,
-        |s, carried| {
-            let slot = &slots.slots[s];
-            let row_of = |k: usize, row_in_joint: usize| {
-                model.bodies[*padded(&slot.lanes, k)].joint.idx_v + row_in_joint
-            };
-            // The columns of the bodies below: in a packed slot lane k is the row's body too.
-            for column in carried.iter() {
-                let [f1, f2, f3] = [0, 1, 2].map(|w| column.wrenches[w]);
-                for (r, &s_i) in terms.subspaces[s].iter().enumerate() {
-                    let below = dot6(g, s_i, f1);
-                    let above = g.add(dot6(g, f2, terms.axis_rates[s][r]), dot6(g, f3, s_i));
-                    for (k, &col) in column.columns.iter().enumerate() {
-                        c[row_of(k, r)][col] = g.lane(below, k);
-                        c[col][row_of(k, r)] = g.lane(above, k);
-                    }
+    carry_columns_up(g, slots, &transforms, repack, |s, carried| {
+        let slot = &slots.slots[s];
+        let row_of = |k: usize, row_in_joint: usize| {
+            model.bodies[*padded(&slot.lanes, k)].joint.idx_v + row_in_joint
+        };
+        // The columns of the bodies below: in a packed slot lane k is the row's body too.
+        for column in carried.iter() {
+            let [f1, f2, f3] = [0, 1, 2].map(|w| column.wrenches[w]);
+            for (r, &s_i) in terms.subspaces[s].iter().enumerate() {
+                let below = dot6(g, s_i, f1);
+                let above = g.add(dot6(g, f2, terms.axis_rates[s][r]), dot6(g, f3, s_i));
+                for (k, &col) in column.columns.iter().enumerate() {
+                    c[row_of(k, r)][col] = g.lane(below, k);
+                    c[col][row_of(k, r)] = g.lane(above, k);
                 }
             }
-            // The slot's own columns, and their entries in its own rows.
-            for (col, &s_j) in terms.subspaces[s].iter().enumerate() {
-                let (b_s, bt_s) = terms.b_times(g, s, s_j);
-                let composite = &terms.inertia_composite[s];
-                let f1 = add6(
-                    g,
-                    inertia_times(g, composite, terms.axis_rates[s][col]),
-                    b_s,
-                );
-                for (r, &s_row) in terms.subspaces[s].iter().enumerate() {
-                    let entry = dot6(g, s_row, f1);
-                    for k in 0..slot.lanes.len() {
-                        c[row_of(k, r)][row_of(k, col)] = g.lane(entry, k);
-                    }
+        }
+        // The slot's own columns, and their entries in its own rows.
+        for (col, &s_j) in terms.subspaces[s].iter().enumerate() {
+            let (b_s, bt_s) = terms.b_times(g, s, s_j);
+            let composite = &terms.inertia_composite[s];
+            let f1 = add6(
+                g,
+                inertia_times(g, composite, terms.axis_rates[s][col]),
+                b_s,
+            );
+            for (r, &s_row) in terms.subspaces[s].iter().enumerate() {
+                let entry = dot6(g, s_row, f1);
+                for k in 0..slot.lanes.len() {
+                    c[row_of(k, r)][row_of(k, col)] = g.lane(entry, k);
                 }
-                carried.push(CarriedColumns {
-                    wrenches: vec![f1, inertia_times(g, composite, s_j), bt_s],
-                    columns: (0..slot.lanes.len()).map(|k| row_of(k, col)).collect(),
-                });
             }
-        },
-    );
+            carried.push(CarriedColumns {
+                wrenches: vec![f1, inertia_times(g, composite, s_j), bt_s],
+                columns: (0..slot.lanes.len()).map(|k| row_of(k, col)).collect(),
+            });
+        }
+    });
     c
 }
 

@@ -86,7 +86,15 @@ pub fn mass_matrix_packed(
     transforms: &[JointTransform],
     inertias: &[BodyInertia],
 ) -> Vec<Vec<Node>> {
-    by_slots(g, model, &Slots::of(model), transforms, inertias, true)
+    // Columns packed again where they meet, if the model packs at all ([`Model::packs`]).
+    by_slots(
+        g,
+        model,
+        &Slots::of(model),
+        transforms,
+        inertias,
+        model.packs,
+    )
 }
 
 /// M(q) over `slots`, partly filled packs of columns packed again where they meet when
@@ -119,7 +127,7 @@ fn by_slots(
                 columns,
             });
         }
-        if repack && model.packs && slot.lanes.len() == 1 && slot.parent != SlotParent::Ground {
+        if repack && slot.lanes.len() == 1 && slot.parent != SlotParent::Ground {
             carried = pack_columns(g, carried);
         }
         for c in &carried {

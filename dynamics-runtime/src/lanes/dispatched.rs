@@ -187,18 +187,9 @@ impl One for F64x4 {
 impl Scalar for F64x4 {
     /// The unpacked body: four states already fill the lanes.
     #[inline(always)]
-    fn run_packed<R>(packed: impl FnOnce() -> R, unpacked: impl FnOnce() -> R) -> R {
+    fn run_packed<A, R>(arg: A, packed: impl FnOnce(A) -> R, unpacked: impl FnOnce(A) -> R) -> R {
         let _ = packed;
-        unpacked()
-    }
-    #[inline(always)]
-    fn run_packed_into<O: ?Sized>(
-        out: &mut O,
-        packed: impl FnOnce(&mut O),
-        unpacked: impl FnOnce(&mut O),
-    ) {
-        let _ = packed;
-        unpacked(out);
+        unpacked(arg)
     }
     /// Every lane `x`.
     #[inline(always)]

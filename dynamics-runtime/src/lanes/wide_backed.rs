@@ -192,18 +192,9 @@ macro_rules! lanes_type {
         impl Scalar for $name {
             /// The unpacked body: the lanes already hold several states.
             #[inline(always)]
-            fn run_packed<R>(packed: impl FnOnce() -> R, unpacked: impl FnOnce() -> R) -> R {
+            fn run_packed<A, R>(arg: A, packed: impl FnOnce(A) -> R, unpacked: impl FnOnce(A) -> R) -> R {
                 let _ = packed;
-                unpacked()
-            }
-            #[inline(always)]
-            fn run_packed_into<O: ?Sized>(
-                out: &mut O,
-                packed: impl FnOnce(&mut O),
-                unpacked: impl FnOnce(&mut O),
-            ) {
-                let _ = packed;
-                unpacked(out);
+                unpacked(arg)
             }
             /// Every lane `x` as the scalar type's `from_f64` gives it.
             #[inline(always)]
