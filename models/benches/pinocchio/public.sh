@@ -4,7 +4,7 @@
 # would, timed beside Pinocchio on the same states.
 #
 #   bash models/benches/pinocchio/public.sh [--quick] [--isa] [--robots "go2 xarm7 g1"]
-#                                           [--rotation-tolerance 1e-10] [--avx512]
+#                                           [--rotation-tolerance 1e-10] [--avx512] [--lanes]
 #
 # Steps:
 #   1. `compare.sh --setup-only`: Pinocchio (pin) in ./venv and ./build/timing, as for the
@@ -31,6 +31,11 @@
 # --avx512: the robots' crates depend on dynamics-runtime with its `avx512` feature, so on a
 # CPU with AVX-512F/VL the wide copy that runs is the build with 32 vector registers (the
 # table's code kB stays the AVX2 + FMA copy's).
+# --lanes: each declaration also says `lanes: true;`, and after each robot's benchmark its
+# inverse dynamics, mass matrix (in place) and forward dynamics run on 64 states one f64
+# call per state against F64x4 and F32x8 lanes (public_lanes.rs, an example of the robot's
+# crate, which checks the lanes' results against f64 first); the table goes to
+# build/public/lanes.md.
 # Robots: go2 (Unitree quadruped, free base, 18 dof), xarm7 (7-dof arm), g1 (Unitree humanoid,
 # 29 joints, free base, 35 dof); by name also the 18-dof quadrupeds anymal (ANYmal C),
 # solo12, a1 and hyq, the arm z1 (Unitree Z1: 6 joints and a revolute gripper joint,
@@ -45,6 +50,7 @@ ROOT="$(cd "$HERE/../../.." && pwd)"
 ROBOTS="go2 xarm7 g1"
 QUICK=0
 ISA=0
+LANES=0
 TOLERANCE=""
 RUNTIME_FEATURES=""
 ERD_VERSION="${ERD_VERSION:-6.0.0}"
@@ -52,6 +58,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --quick) QUICK=1 ;;
     --isa) ISA=1 ;;
+    --lanes) LANES=1 ;;
     --robots) ROBOTS="$2"; shift ;;
     --rotation-tolerance) TOLERANCE="$2"; shift ;;
     --avx512) RUNTIME_FEATURES='"avx512"'; export PUBLIC_AVX512=1 ;;
@@ -106,6 +113,9 @@ OUTPUTS="inverse_dynamics, mass_matrix_into, forward_dynamics, gravity, bias, co
 : > "$OUT/build.tsv"
 : > "$OUT/criterion.log"
 : > "$OUT/load.tsv"
+if [ "$LANES" = 1 ]; then
+  printf '| robot | function | f64 ns | F64x4 ns (gain) | F64x4 prepacked ns (gain) | F32x8 ns (gain) |\n| --- | --- | ---: | ---: | ---: | ---: |\n' > "$OUT/lanes.md"
+fi
 if [ "$ISA" = 1 ]; then
   printf '| robot | output | baseline ns | AVX2 + FMA ns | wide / baseline |\n| --- | --- | ---: | ---: | ---: |\n' > "$OUT/isa.md"
 fi
@@ -142,6 +152,10 @@ harness = false
 name = "isa"
 path = "$HERE/public_isa.rs"
 
+[[example]]
+name = "lanes"
+path = "$HERE/public_lanes.rs"
+
 [profile.release]
 opt-level = 3
 codegen-units = 16
@@ -152,6 +166,9 @@ lto = "thin"
 inherits = "release"
 EOF
   floating=false
+  LANES_SETTING=""
+  [ "$LANES" = 1 ] && LANES_SETTING="
+    lanes: true;"
   [ "$base" = free ] && floating=true
   cat > "$CRATE/src/lib.rs" <<EOF
 //! Written by public.sh: $robot from example-robot-data, as a user would declare it.
@@ -161,7 +178,7 @@ dynamics_runtime::mechanism! {
     urdf: "$(realpath "$urdf")";
     floating_base: $floating;
     urdf_mimic: false;${TOLERANCE:+
-    rotation_tolerance: $TOLERANCE;}
+    rotation_tolerance: $TOLERANCE;}${LANES_SETTING}
     outputs: [$OUTPUTS];
 }
 EOF
@@ -206,6 +223,12 @@ EOF
     PUBLIC_ROBOT="$robot" cargo run -q --release --manifest-path "$CRATE/Cargo.toml" --example isa \
       >> "$OUT/isa.md" 2>> "$CRATE/cargo.log" ||
       { tail -30 "$CRATE/cargo.log" >&2; fail "$robot's isa example failed (log: $CRATE/cargo.log)"; }
+  fi
+  if [ "$LANES" = 1 ]; then
+    step "$robot: many states per call, f64 against lanes (load average $(cut -d' ' -f1-3 /proc/loadavg))"
+    PUBLIC_ROBOT="$robot" cargo run -q --release --manifest-path "$CRATE/Cargo.toml" --example lanes \
+      >> "$OUT/lanes.md" 2>> "$CRATE/cargo.log" ||
+      { tail -30 "$CRATE/cargo.log" >&2; fail "$robot's lanes example failed (log: $CRATE/cargo.log)"; }
   fi
 done < "$OUT/robots.tsv"
 
@@ -344,4 +367,10 @@ if [ "$ISA" = 1 ]; then
   echo "The two copies of the generated code, paired in one process (wide / baseline < 1: the"
   echo "AVX2 + FMA copy is faster):"
   cat "$OUT/isa.md"
+fi
+if [ "$LANES" = 1 ]; then
+  echo
+  echo "Many states per call, ns per state over 64 states (gain: the f64 calls' time over the"
+  echo "variant's, median of 21 rounds in one process):"
+  cat "$OUT/lanes.md"
 fi
