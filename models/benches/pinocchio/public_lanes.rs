@@ -28,11 +28,6 @@ const NV: usize = <Robot as Mechanism>::NV;
 const N: usize = 64;
 const ROUNDS: usize = 21;
 
-fn median(mut x: Vec<f64>) -> f64 {
-    x.sort_by(f64::total_cmp);
-    x[x.len() / 2]
-}
-
 /// The variants' median ns per state, and the median per-round ratio of variant 0's time to
 /// each variant's.
 fn timed(variants: &mut [&mut dyn FnMut()]) -> Vec<(f64, f64)> {
@@ -66,11 +61,12 @@ fn timed(variants: &mut [&mut dyn FnMut()]) -> Vec<(f64, f64)> {
     }
     ns.into_iter()
         .zip(ratio)
-        .map(|(n, r)| (median(n), median(r)))
+        .map(|(n, r)| (paired::median(n), paired::median(r)))
         .collect()
 }
 
-/// The largest |entry| of `f64` results, and the largest |difference| from them.
+/// Exits nonzero when an entry of `other` differs from `reference`'s by more than
+/// `tolerance` times the largest |entry| of `reference` (at least 1).
 fn check(name: &str, what: &str, reference: &[Vec<f64>], other: &[Vec<f64>], tolerance: f64) {
     let scale = reference
         .iter()
@@ -97,13 +93,17 @@ fn row(robot: &str, name: &str, t: &[(f64, f64)]) {
     );
 }
 
-fn flat<const K: usize>(x: &[[f64; K]]) -> Vec<Vec<f64>> {
-    x.iter().map(|r| r.to_vec()).collect()
+/// Each state's result as one list of `f64`.
+fn flat<T: Copy + Into<f64>, const K: usize>(x: &[[T; K]]) -> Vec<Vec<f64>> {
+    x.iter()
+        .map(|r| r.iter().map(|&v| v.into()).collect())
+        .collect()
 }
 
-fn flat32<const K: usize>(x: &[[f32; K]]) -> Vec<Vec<f64>> {
+/// Each state's matrix as one list of `f64`, row after row.
+fn flat_matrix<T: Copy + Into<f64>, const K: usize>(x: &[[[T; K]; K]]) -> Vec<Vec<f64>> {
     x.iter()
-        .map(|r| r.iter().map(|&v| f64::from(v)).collect())
+        .map(|m| m.iter().flatten().map(|&v| v.into()).collect())
         .collect()
 }
 
@@ -149,7 +149,7 @@ fn main() {
                 std::process::exit(1);
             }
             check($name, "F64x4", &flat(&out), &flat(&out4), 1e-12);
-            check($name, "F32x8", &flat(&out), &flat32(&out32), 1e-3);
+            check($name, "F32x8", &flat(&out), &flat(&out32), 1e-3);
             let t = timed(&mut [
                 &mut || {
                     for i in 0..N {
@@ -192,24 +192,18 @@ fn main() {
         eprintln!("public_lanes: a batch's inputs differ in length");
         std::process::exit(1);
     }
-    let flat_m = |m: &[[[f64; NV]; NV]]| -> Vec<Vec<f64>> {
-        m.iter()
-            .map(|x| x.iter().flatten().copied().collect())
-            .collect()
-    };
-    let m32_as_64: Vec<[[f64; NV]; NV]> = m32.iter().map(|x| x.map(|r| r.map(f64::from))).collect();
     check(
         "mass_matrix_into",
         "F64x4",
-        &flat_m(&m),
-        &flat_m(&m4),
+        &flat_matrix(&m),
+        &flat_matrix(&m4),
         1e-12,
     );
     check(
         "mass_matrix_into",
         "F32x8",
-        &flat_m(&m),
-        &flat_m(&m32_as_64),
+        &flat_matrix(&m),
+        &flat_matrix(&m32),
         1e-3,
     );
     let t = timed(&mut [

@@ -50,7 +50,8 @@ pub fn copies<S, R>(states: &[S], f: impl Fn(&S) -> R) -> [f64; 3] {
     )
 }
 
-fn median(mut x: Vec<f64>) -> f64 {
+/// The median of `x` (the upper one of an even count); `x` must not be empty.
+pub fn median(mut x: Vec<f64>) -> f64 {
     x.sort_by(f64::total_cmp);
     x[x.len() / 2]
 }
