@@ -44,6 +44,11 @@ macro_rules! call {
 macro_rules! extra {
     (plain, $a:ty, $b:ty, $states:expr) => {};
     (public, $a:ty, $b:ty, $states:expr) => {
+        // The `_into` twins write into one buffer a side, kept across calls.
+        let s0 = &$states[0];
+        let (ma, mb) = (std::cell::RefCell::new(<$a>::mass_matrix(&s0.0)), std::cell::RefCell::new(<$b>::mass_matrix(&s0.0)));
+        line("mass_matrix_into", $states, |s| { let m = &mut *ma.borrow_mut(); <$a>::mass_matrix_into(&s.0, m); std::hint::black_box(m); }, |s| { let m = &mut *mb.borrow_mut(); <$b>::mass_matrix_into(&s.0, m); std::hint::black_box(m); });
+        line("coriolis_matrix_into", $states, |s| { let m = &mut *ma.borrow_mut(); <$a>::coriolis_matrix_into(&s.0, &s.1, m); std::hint::black_box(m); }, |s| { let m = &mut *mb.borrow_mut(); <$b>::coriolis_matrix_into(&s.0, &s.1, m); std::hint::black_box(m); });
         line("mass_matrix_inverse", $states, |s| <$a>::mass_matrix_inverse(&s.0), |s| <$b>::mass_matrix_inverse(&s.0));
         for s in $states {
             let (da, db) = (<$a>::inverse_dynamics_derivatives(&s.0, &s.1, &s.2), <$b>::inverse_dynamics_derivatives(&s.0, &s.1, &s.2));
