@@ -435,8 +435,7 @@ pub(crate) fn function_into(
     };
     let name_into = format_ident!("{}_{}", name, suffix);
     let writes = effective_writes(&spec.output, writes);
-    let mut places = output_places(&spec.output, &ops, writes);
-    let fill = zero_fill(&spec.output, &ops, writes, &mut places);
+    let places = output_places(&spec.output, &ops, writes);
     let link = match writes {
         Writes::Every => format!(
             "As [`{name}`](Self::{name}), its result written into `out`, every entry of which \
@@ -465,7 +464,7 @@ pub(crate) fn function_into(
     };
     let docs = doc_attrs(&link, &count, &spec.output);
     let params = function_params(&ops, spec, plan);
-    if places.is_empty() && fill.is_none() {
+    if places.is_empty() {
         // A sparse twin of an output that is zero whatever the state (gravity without
         // gravity): nothing to write, and `out` unused.
         let allows = generated_allows();
@@ -475,9 +474,7 @@ pub(crate) fn function_into(
             #vis fn #name_into<T: #trait_>(#(#params,)* _out: &mut #ret) {}
         };
     }
-    let body = if places.is_empty() {
-        quote!()
-    } else if plan.pieces.len() > 1 {
+    let body = if plan.pieces.len() > 1 {
         plan.chained_pieces_into(&ops, spec, &places)
     } else {
         let statements = plan.piece_body_into(&ops, 0, &places, &[]);
@@ -512,72 +509,9 @@ pub(crate) fn function_into(
         #(#docs)*
         #allows
         #vis fn #name_into<T: #trait_>(#(#params,)* out: &mut #ret) {
-            #fill
             #body
         }
     }
-}
-
-/// Outputs with fewer entries that are a constant 0 than this write them one by one.
-const MIN_ZEROS_FILLED: usize = 16;
-
-/// For a `_into` twin that writes every entry ([`Writes::Every`]) of an output with many
-/// entries that are a constant 0 (at least [`MIN_ZEROS_FILLED`] and a quarter of them,
-/// as the off-diagonal blocks of a branched robot's mass matrix), the statement that
-/// zeroes all of `out` first, and those entries taken out of `places`: one block fill
-/// (four entries a store, or a `memset`) in place of a scalar store each. g1's 35 × 35
-/// mass matrix has 596 such entries of 1225.
-fn zero_fill(
-    output: &Output,
-    ops: &[Op],
-    writes: Writes,
-    places: &mut HashMap<Node, Vec<TokenStream>>,
-) -> Option<TokenStream> {
-    fn zeroed(output: &Output) -> Option<TokenStream> {
-        let zero = quote!(T::from_f64(0.0));
-        Some(match output {
-            Output::Scalar(_) => zero,
-            Output::Vector(v) => {
-                let n = Literal::usize_unsuffixed(v.len());
-                quote!([#zero; #n])
-            }
-            Output::Matrix(rows) => {
-                let r = Literal::usize_unsuffixed(rows.len());
-                let c = Literal::usize_unsuffixed(rows.first().map_or(0, Vec::len));
-                quote!([[#zero; #c]; #r])
-            }
-            Output::Tuple(items) => {
-                let items = items.iter().map(zeroed).collect::<Option<Vec<_>>>()?;
-                quote!((#(#items,)*))
-            }
-            Output::Stack(items) => {
-                let n = Literal::usize_unsuffixed(items.len());
-                let item = zeroed(items.first()?)?;
-                quote!([#item; #n])
-            }
-            // Its solve loop writes every entry.
-            Output::Solved(_) => return None,
-        })
-    }
-    if writes != Writes::Every {
-        return None;
-    }
-    let zero = Op::Const(crate::sym::Const::new(0.0));
-    let zeros: Vec<Node> = places
-        .keys()
-        .copied()
-        .filter(|n| ops[n.index()] == zero)
-        .collect();
-    let count: usize = zeros.iter().map(|n| places[n].len()).sum();
-    let total: usize = places.values().map(Vec::len).sum();
-    if count < MIN_ZEROS_FILLED || 4 * count < total {
-        return None;
-    }
-    let value = zeroed(output)?;
-    for n in zeros {
-        places.remove(&n);
-    }
-    Some(quote!(*out = #value;))
 }
 
 /// One function (or `_into` twin) with two bodies, `packed` and `unpacked` (the printed
@@ -1893,9 +1827,8 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
         assert!(pretty(emit_function(&g, &s)).contains("fn part_2"));
     }
 
-    /// A split `_into` twin writes each entry of `out` once: an output that is a leaf (the
-    /// constant 2.5, also an operand in a piece) by the function after the pieces, and,
-    /// writing every entry, the many constant zeros at once by zeroing `out` first.
+    /// A split `_into` twin writes each entry of `out` once: an output that is a leaf, also
+    /// an operand in a piece, by the function after the pieces only.
     #[test]
     fn into_twins_write_each_entry_once() {
         let g = Graph::new();
@@ -1928,12 +1861,10 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
             for i in 0..6 {
                 for j in 0..6 {
                     let place = format!("(*out)[{i}][{j}] =");
-                    let once = usize::from(at(i, j));
+                    let once = usize::from(at(i, j) || writes == Writes::Every);
                     assert_eq!(text.matches(&place).count(), once, "{place}\n{text}");
                 }
             }
-            let filled = text.contains("*out = [[T::from_f64(0.0); 6]; 6];");
-            assert_eq!(filled, writes == Writes::Every, "{text}");
             syn::parse_str::<syn::File>(&text).expect("pretty text parses again");
         }
     }

@@ -12,8 +12,9 @@
 #
 # A public robot is one that `models/benches/pinocchio/public.sh --robots "<name>"` has
 # written (its URDF and its row in build/public/robots.tsv; nothing of it is committed):
-# declared as public.sh declares it, with the six timed outputs, M⁻¹ and ∂τ, and printed `--whole`, as
-# the macro expands it in an optimized build (both commits' compilers must know `--whole`).
+# declared as public.sh declares it, with the six timed outputs (the mass and Coriolis
+# matrices with their `_into` twins, timed too), M⁻¹ and ∂τ, and printed `--whole`, as the
+# macro expands it in an optimized build (both commits' compilers must know `--whole`).
 # For example, g1's code against itself, to see the harness's spread: A/A ratios within
 # 0.5 % (2026-11-29).
 set -euo pipefail
@@ -48,7 +49,7 @@ case $model in
     pub struct Robot;
     urdf: \"$urdf\";
     floating_base: $floating;
-    outputs: [inverse_dynamics, mass_matrix, forward_dynamics, gravity, bias, coriolis_matrix,
+    outputs: [inverse_dynamics, mass_matrix_into, forward_dynamics, gravity, bias, coriolis_matrix_into,
               mass_matrix_inverse, inverse_dynamics_derivatives];
 }" ;;
 esac

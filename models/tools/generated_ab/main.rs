@@ -39,8 +39,8 @@ macro_rules! call {
     };
 }
 
-/// The lines besides the six: none (`plain`), or M⁻¹ and ∂τ too (`public`, the public
-/// robots; ∂τ checked first).
+/// The lines besides the six: none (`plain`), or the `_into` twins of the mass and Coriolis
+/// matrices, M⁻¹ and ∂τ too (`public`, the public robots; ∂τ checked first).
 macro_rules! extra {
     (plain, $a:ty, $b:ty, $states:expr) => {};
     (public, $a:ty, $b:ty, $states:expr) => {
