@@ -1827,8 +1827,9 @@ pub fn pendulum<T: Scalar>(q: &[T; 1], v: &[T; 1], a: &[T; 1], _tau: &[T; 1]) ->
         assert!(pretty(emit_function(&g, &s)).contains("fn part_2"));
     }
 
-    /// A split `_into` twin writes each entry of `out` once: an output that is a leaf, also
-    /// an operand in a piece, by the function after the pieces only.
+    /// A split `_into` twin writes each entry of `out` once: an output that is a leaf and
+    /// also an operand in a piece (`v[1]`, which the chain reads), by the function after
+    /// the pieces only.
     #[test]
     fn into_twins_write_each_entry_once() {
         let g = Graph::new();
