@@ -188,9 +188,7 @@ macro_rules! element_shape {
                 let [a, b, c, d] = out;
                 let whole = K - K % 4;
                 for k in (0..whole).step_by(4) {
-                    let lanes = $transpose(core::array::from_fn(|j| {
-                        core::array::from_fn(|l| Lanes::get(packed[k + j], l).unwrap_or(0.0))
-                    }));
+                    let lanes = $transpose(core::array::from_fn(|j| Lanes::first4(packed[k + j])));
                     a[k..k + 4].copy_from_slice(&lanes[0]);
                     b[k..k + 4].copy_from_slice(&lanes[1]);
                     c[k..k + 4].copy_from_slice(&lanes[2]);

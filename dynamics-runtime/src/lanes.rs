@@ -92,6 +92,19 @@ pub trait Lanes: Scalar {
     fn from_fn(f: impl FnMut(usize) -> Self::Element) -> Self;
     /// Lane `i`, or `None` when `i ≥ LANES`.
     fn get(self, i: usize) -> Option<Self::Element>;
+    /// Lanes 0 to 3 (0 for a lane past [`Lanes::LANES`]): what the batch helpers' 4 × 4
+    /// transposes read of each pack. [`F64x4`] overrides it with its whole array, which
+    /// the compiler then loads as one vector from where the pack was stored; lane by lane,
+    /// LLVM merged the sixteen reads of a transpose into loads across the halves of the
+    /// packs just stored (a profile of the UR5's inverse dynamics through `batch::map3`
+    /// put a quarter of the helper's time on three of them).
+    #[inline(always)]
+    fn first4(self) -> [Self::Element; 4] {
+        core::array::from_fn(|l| {
+            self.get(l)
+                .unwrap_or_else(|| <Self::Element as Scalar>::from_f64(0.0))
+        })
+    }
 }
 
 #[cfg(test)]

@@ -309,6 +309,11 @@ impl Lanes for F64x4 {
     fn get(self, i: usize) -> Option<f64> {
         Self::get(self, i)
     }
+    /// The four lanes as they are stored.
+    #[inline(always)]
+    fn first4(self) -> [f64; 4] {
+        self.0
+    }
 }
 
 /// `a · b + c`, one rounding per lane: one `vfmadd` on one AVX register, each lane bit for

@@ -44,8 +44,10 @@ macro_rules! call {
 macro_rules! extra {
     (plain, $a:ty, $b:ty, $states:expr) => {};
     (public, $a:ty, $b:ty, $states:expr) => {
-        // The `_into` twins write into one buffer a side, kept across calls; first both
-        // sides' twins must give A's returned values.
+        // The `_into` twins write into one buffer, the same for both sides and kept across
+        // calls: where an output lies moves its time by up to 1.4× (g1's mass matrix,
+        // BENCHMARKS.md), so a buffer a side would time the placements as much as the code.
+        // First both sides' twins must give A's returned values.
         let s0 = &$states[0];
         let (ma, mb) = (std::cell::RefCell::new(<$a>::mass_matrix(&s0.0)), std::cell::RefCell::new(<$b>::mass_matrix(&s0.0)));
         for s in $states {
@@ -57,8 +59,8 @@ macro_rules! extra {
             <$b>::coriolis_matrix_into(&s.0, &s.1, n);
             assert!(close(m.as_flattened(), <$a>::coriolis_matrix(&s.0, &s.1).as_flattened()) && close(n.as_flattened(), m.as_flattened()), "coriolis_matrix_into disagrees");
         }
-        line("mass_matrix_into", $states, |s| { let m = &mut *ma.borrow_mut(); <$a>::mass_matrix_into(&s.0, m); std::hint::black_box(m); }, |s| { let m = &mut *mb.borrow_mut(); <$b>::mass_matrix_into(&s.0, m); std::hint::black_box(m); });
-        line("coriolis_matrix_into", $states, |s| { let m = &mut *ma.borrow_mut(); <$a>::coriolis_matrix_into(&s.0, &s.1, m); std::hint::black_box(m); }, |s| { let m = &mut *mb.borrow_mut(); <$b>::coriolis_matrix_into(&s.0, &s.1, m); std::hint::black_box(m); });
+        line("mass_matrix_into", $states, |s| { let m = &mut *ma.borrow_mut(); <$a>::mass_matrix_into(&s.0, m); std::hint::black_box(m); }, |s| { let m = &mut *ma.borrow_mut(); <$b>::mass_matrix_into(&s.0, m); std::hint::black_box(m); });
+        line("coriolis_matrix_into", $states, |s| { let m = &mut *ma.borrow_mut(); <$a>::coriolis_matrix_into(&s.0, &s.1, m); std::hint::black_box(m); }, |s| { let m = &mut *ma.borrow_mut(); <$b>::coriolis_matrix_into(&s.0, &s.1, m); std::hint::black_box(m); });
         line("mass_matrix_inverse", $states, |s| <$a>::mass_matrix_inverse(&s.0), |s| <$b>::mass_matrix_inverse(&s.0));
         for s in $states {
             let (da, db) = (<$a>::inverse_dynamics_derivatives(&s.0, &s.1, &s.2), <$b>::inverse_dynamics_derivatives(&s.0, &s.1, &s.2));
