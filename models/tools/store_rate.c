@@ -19,6 +19,23 @@ static double now_ns(void) {
     return t.tv_sec * 1e9 + t.tv_nsec;
 }
 
+/* Times n stores of eight `vmovsd` to the byte offsets o0..o7 of `buffer` a loop, and
+ * prints ns a store and stores a cycle at `ghz`. */
+#define TIME_STORES(label, o0, o1, o2, o3, o4, o5, o6, o7)                                  \
+    do {                                                                                    \
+        double start = now_ns();                                                            \
+        for (long i = 0; i < n / 8; i++) {                                                  \
+            double v = (double)i;                                                           \
+            __asm__ volatile("vmovsd %0, " o0 "(%1)\n\tvmovsd %0, " o1 "(%1)\n\t"          \
+                             "vmovsd %0, " o2 "(%1)\n\tvmovsd %0, " o3 "(%1)\n\t"          \
+                             "vmovsd %0, " o4 "(%1)\n\tvmovsd %0, " o5 "(%1)\n\t"          \
+                             "vmovsd %0, " o6 "(%1)\n\tvmovsd %0, " o7 "(%1)\n\t"          \
+                             : : "x"(v), "r"(buffer) : "memory");                           \
+        }                                                                                   \
+        double ns = (now_ns() - start) / n;                                                 \
+        printf("%s: %.3f ns each, %.2f a cycle\n", label, ns, 1.0 / (ns * ghz));            \
+    } while (0)
+
 int main(void) {
     const long n = 200000000;
     long x = 0;
@@ -28,27 +45,8 @@ int main(void) {
     double ghz = n / (now_ns() - t);
     printf("clock: %.2f GHz (dependent additions)\n", ghz);
 
-    t = now_ns();
-    for (long i = 0; i < n / 8; i++) {
-        double v = (double)i;
-        /* rows of a 35-column matrix of doubles: 280 bytes apart, eight different lines */
-        __asm__ volatile("vmovsd %0, 0(%1)\n\tvmovsd %0, 280(%1)\n\tvmovsd %0, 560(%1)\n\t"
-                         "vmovsd %0, 840(%1)\n\tvmovsd %0, 1120(%1)\n\tvmovsd %0, 1400(%1)\n\t"
-                         "vmovsd %0, 1680(%1)\n\tvmovsd %0, 1960(%1)\n\t"
-                         : : "x"(v), "r"(buffer) : "memory");
-    }
-    double ns = (now_ns() - t) / n;
-    printf("stores to eight lines: %.3f ns each, %.2f a cycle\n", ns, 1.0 / (ns * ghz));
-
-    t = now_ns();
-    for (long i = 0; i < n / 8; i++) {
-        double v = (double)i;
-        __asm__ volatile("vmovsd %0, 0(%1)\n\tvmovsd %0, 8(%1)\n\tvmovsd %0, 16(%1)\n\t"
-                         "vmovsd %0, 24(%1)\n\tvmovsd %0, 32(%1)\n\tvmovsd %0, 40(%1)\n\t"
-                         "vmovsd %0, 48(%1)\n\tvmovsd %0, 56(%1)\n\t"
-                         : : "x"(v), "r"(buffer) : "memory");
-    }
-    ns = (now_ns() - t) / n;
-    printf("stores to one line: %.3f ns each, %.2f a cycle\n", ns, 1.0 / (ns * ghz));
+    /* rows of a 35-column matrix of doubles, 280 bytes apart: eight different lines */
+    TIME_STORES("stores to eight lines", "0", "280", "560", "840", "1120", "1400", "1680", "1960");
+    TIME_STORES("stores to one line", "0", "8", "16", "24", "32", "40", "48", "56");
     return x == 0;
 }
