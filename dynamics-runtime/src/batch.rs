@@ -179,7 +179,7 @@ macro_rules! element_shape {
             /// Four entries of four results at a time: lane `l` of `packed[k..k + 4]` is
             /// written to `out[l][k..k + 4]` as one array, which the compiler turns into a
             /// 4 × 4 transpose in registers and one store per result; the last `K mod 4`
-            /// entries one by one.
+            /// entries by one more transpose, each result's part one store.
             #[inline(always)]
             fn unpack4_array<const K: usize>(
                 packed: &[Self::Packed; K],
@@ -194,8 +194,17 @@ macro_rules! element_shape {
                     c[k..k + 4].copy_from_slice(&lanes[2]);
                     d[k..k + 4].copy_from_slice(&lanes[3]);
                 }
-                for k in whole..K {
-                    Self::unpack4(&packed[k], [&mut a[k], &mut b[k], &mut c[k], &mut d[k]]);
+                // The last K mod 4 entries: one more transpose, its missing rows copies of
+                // the last entry, each result's part of it one store.
+                if whole < K {
+                    let lanes = $transpose(core::array::from_fn(|j| {
+                        Lanes::first4(packed[(whole + j).min(K - 1)])
+                    }));
+                    let rest = K - whole;
+                    a[whole..].copy_from_slice(&lanes[0][..rest]);
+                    b[whole..].copy_from_slice(&lanes[1][..rest]);
+                    c[whole..].copy_from_slice(&lanes[2][..rest]);
+                    d[whole..].copy_from_slice(&lanes[3][..rest]);
                 }
             }
         }

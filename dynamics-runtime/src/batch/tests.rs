@@ -253,6 +253,32 @@ fn the_last_pack_is_padded_with_its_last_state() {
     }
 }
 
+/// Arrays of every length from 1 to 9 (whole blocks of four entries and every remainder,
+/// which the unpacking takes by one more transpose), nested too, through `map1` and
+/// `map1_into` for every number of states from 0 to 9: each result is its state.
+#[test]
+fn arrays_of_every_length_unpack_to_their_states() {
+    fn value(i: usize, k: usize) -> f64 {
+        (100 * i + k) as f64 + 0.5
+    }
+    macro_rules! lengths {
+        ($($k:literal),*) => {$(
+            for n in 0..=9 {
+                let x: Vec<[f64; $k]> = (0..n).map(|i| core::array::from_fn(|k| value(i, k))).collect();
+                let mut out = vec![[f64::NAN; $k]; n];
+                assert_eq!(map1(&x, &mut out, |p: &[F64x4; $k]| *p), Ok(()));
+                assert_eq!(out, x, "{} entries, {n} states", $k);
+                let nested: Vec<[[f64; $k]; 2]> = x.iter().map(|r| [*r, r.map(|v| -v)]).collect();
+                let mut out = vec![[[f64::NAN; $k]; 2]; n];
+                let copy = |p: &[[F64x4; $k]; 2], o: &mut [[F64x4; $k]; 2]| *o = *p;
+                assert_eq!(map1_into(&nested, &mut out, copy), Ok(()));
+                assert_eq!(out, nested, "2 × {} entries, {n} states", $k);
+            }
+        )*};
+    }
+    lengths!(1, 2, 3, 4, 5, 6, 7, 8, 9);
+}
+
 /// A pair and a triple as outputs (and inputs).
 #[test]
 fn tuples_pack_and_unpack() {
