@@ -93,7 +93,8 @@ pub trait Lanes: Scalar {
     /// Lane `i`, or `None` when `i ≥ LANES`.
     fn get(self, i: usize) -> Option<Self::Element>;
     /// Lanes 0 to 3 (0 for a lane past [`Lanes::LANES`]): what the batch helpers' 4 × 4
-    /// transposes read of each pack. [`F64x4`] overrides it with its whole array, which
+    /// transposes read of each pack. [`F64x4`] of the default build (no AVX at compile
+    /// time, `lanes/dispatched.rs`) overrides it with its whole array, which
     /// the compiler then loads as one vector from where the pack was stored; lane by lane,
     /// LLVM merged the sixteen reads of a transpose into loads across the halves of the
     /// packs just stored (a profile of the UR5's inverse dynamics through `batch::map3`
