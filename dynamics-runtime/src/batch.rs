@@ -196,10 +196,9 @@ macro_rules! element_shape {
                 }
                 // The last K mod 4 entries: one more transpose, its missing rows copies of
                 // the last entry, each result's part of it one store. Apart from the loop
-                // above, so that its stores are of constant length: folded into that loop
-                // (the end of each block `min(k + 4, K)`) the quadruped's mass matrix
-                // through `map1` and `map1_into` took about three times as long (lanes
-                // benchmark, 2026-12-04: the copies of a variable length became calls).
+                // above: folded into it (the end of each block `min(k + 4, K)`), the
+                // quadruped's mass matrix through `map1` and `map1_into` took about three
+                // times as long (lanes benchmark, 2026-12-04).
                 if whole < K {
                     let lanes = $transpose(core::array::from_fn(|j| {
                         Lanes::first4(packed[(whole + j).min(K - 1)])
